@@ -1,0 +1,65 @@
+#include "apps/ddafit/output_files.hpp"
+
+#include <fmt/format.h>
+#include <fmt/os.h>
+
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <stdexcept>
+
+namespace ddafit::app {
+
+void write_history_csv(const std::string& path, const Scene& scene, const SimulationResult& result) {
+  auto out = fmt::output_file(path);
+  out.print("time,point,x,y,ux,uy,vx,vy\n");
+  for (const HistoryRow& h : result.history) {
+    out.print("{:.9g},{},{:.12g},{:.12g},{:.9g},{:.9g},{:.9g},{:.9g}\n", h.time, scene.measure[h.point].name,
+              h.position.x(), h.position.y(), h.displacement.x(), h.displacement.y(), h.velocity.x(),
+              h.velocity.y());
+  }
+}
+
+static const char* status_name(RunStatus s) {
+  switch (s) {
+    case RunStatus::Completed: return "completed";
+    case RunStatus::InvalidScene: return "invalid_scene";
+    case RunStatus::Failed: return "failed";
+  }
+  return "unknown";
+}
+
+void write_summary_json(const std::string& path, const std::string& scene_path, const SimulationResult& result) {
+  const SimulationSummary& s = result.summary;
+  nlohmann::ordered_json j;
+  j["scene"] = scene_path;
+  j["status"] = status_name(s.status);
+  if (!s.message.empty()) j["message"] = s.message;
+  j["points"] = nlohmann::ordered_json::object();
+  for (const PointSummary& p : s.points) {
+    j["points"][p.name] = {{"max_lateral_displacement", p.max_lateral_displacement},
+                           {"max_total_displacement", p.max_total_displacement},
+                           {"peak_lateral_velocity", p.peak_lateral_velocity},
+                           {"peak_total_velocity", p.peak_total_velocity},
+                           {"duration", p.duration},
+                           {"stopped", p.stopped}};
+  }
+  j["run"] = {{"steps", s.run.steps},
+              {"open_close_iterations", s.run.open_close_iterations},
+              {"step_cuts", s.run.step_cuts},
+              {"penalty_raises", s.run.penalty_raises},
+              {"wall_seconds", s.profile.total},
+              {"simulated_time", s.run.simulated_time},
+              {"smallest_step", s.run.smallest_step},
+              {"largest_step", s.run.largest_step},
+              {"final_penalty", s.run.final_penalty}};
+  j["profile_seconds"] = {{"find_contacts", s.profile.find_contacts},
+                          {"assemble", s.profile.assemble},
+                          {"solve", s.profile.solve},
+                          {"check_contacts", s.profile.check_contacts},
+                          {"update", s.profile.update}};
+  std::ofstream out(path);
+  if (!out) throw std::runtime_error(path + ": cannot write");
+  out << j.dump(2) << "\n";
+}
+
+}  // namespace ddafit::app

@@ -1,0 +1,83 @@
+#include <fmt/format.h>
+
+#include <filesystem>
+#include <iostream>
+
+#include "apps/ddafit/commands.hpp"
+#include "apps/ddafit/exit_codes.hpp"
+#include "apps/ddafit/output_files.hpp"
+#include "forward/io/scene_reader.hpp"
+#include "forward/simulation.hpp"
+#include "verify/cases.hpp"
+
+namespace ddafit::app {
+
+int run_simulate(const SimulateArgs& args) {
+  Scene scene;
+  std::string label = args.scene;
+  if (args.scene.empty()) {
+    // The built-in default: the seed's incline check with degradation (i = 5 deg).
+    verification::InclineSetup setup;
+    setup.roughness_angle = 5.0;
+    scene = verification::incline_scene(setup);
+    label = "built-in incline (phi = 25 deg, i = 5 deg)";
+  } else {
+    try {
+      scene = io::read_scene(args.scene);
+    } catch (const io::SceneReadError& e) {
+      std::cerr << e.what() << "\n";
+      return kExitBadInput;
+    }
+  }
+  std::error_code ec;
+  std::filesystem::create_directories(args.out, ec);
+  if (ec) {
+    std::cerr << args.out << ": --out: cannot create the folder (" << ec.message() << ")\n";
+    return kExitBadInput;
+  }
+
+  SimulationHooks hooks;
+  if (!args.quiet) {
+    hooks.on_progress = [](double t, double duration) {
+      std::cerr << fmt::format("\r  t = {:.3f} / {:.3f} s ({:.0f} %)", t, duration, 100.0 * t / duration)
+                << std::flush;
+    };
+  }
+  const SimulationResult result = simulate(scene, hooks);
+  if (!args.quiet) std::cerr << "\r" << std::string(48, ' ') << "\r";
+
+  const std::string history = (std::filesystem::path(args.out) / "history.csv").string();
+  const std::string summary = (std::filesystem::path(args.out) / "summary.json").string();
+  try {
+    write_history_csv(history, scene, result);
+    write_summary_json(summary, label, result);
+  } catch (const std::exception& e) {
+    std::cerr << args.out << ": --out: " << e.what() << "\n";
+    return kExitBadInput;
+  }
+
+  const SimulationSummary& s = result.summary;
+  if (s.status == RunStatus::InvalidScene) {
+    std::cerr << label << ": " << s.message << "\n";
+    return kExitBadInput;
+  }
+  if (s.status == RunStatus::Failed) {
+    std::cerr << label << ": simulation failed: " << s.message << "\n";
+    return kExitRunFailed;
+  }
+  if (!args.quiet) {
+    std::cout << fmt::format("{} steps, {} open-close iterations, {} step cuts, {} penalty raises, {:.2f} s wall\n",
+                             s.run.steps, s.run.open_close_iterations, s.run.step_cuts, s.run.penalty_raises,
+                             s.profile.total);
+    std::cout << fmt::format("{:<10} {:>12} {:>12} {:>12} {:>12} {:>10} {:>8}\n", "point", "max|ux| m", "max|u| m",
+                             "max|vx| m/s", "max|v| m/s", "duration s", "stopped");
+    for (const PointSummary& p : s.points)
+      std::cout << fmt::format("{:<10} {:>12.4f} {:>12.4f} {:>12.4f} {:>12.4f} {:>10.2f} {:>8}\n", p.name,
+                               p.max_lateral_displacement, p.max_total_displacement, p.peak_lateral_velocity,
+                               p.peak_total_velocity, p.duration, p.stopped ? "yes" : "no");
+    std::cout << "wrote " << history << " and " << summary << "\n";
+  }
+  return kExitSuccess;
+}
+
+}  // namespace ddafit::app

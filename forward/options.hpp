@@ -1,0 +1,53 @@
+// Control settings of a DDA run. Plain data with documented defaults, validated once
+// by validate_options() before a run (Ceres' Solver::Options is the model).
+#pragma once
+
+#include <string>
+
+namespace ddafit {
+
+struct SimulationOptions {
+  // Largest vertex displacement allowed in one step, as a fraction of half the model
+  // size (Shi's "g2"; field notes: 0.001-0.01). A step that moves further is redone
+  // with a shorter time step.
+  double max_displacement_ratio = 0.005;
+
+  // Normal contact penalty in N/m (per metre of thickness). 0 means automatic:
+  // penalty_factor x the largest Young's modulus in the scene (Shi's rule of thumb).
+  double penalty = 0.0;
+  double penalty_factor = 50.0;
+
+  // Shear spring of a locked contact = shear_penalty_ratio x normal penalty (Shi: 1/2.5).
+  double shear_penalty_ratio = 0.4;
+
+  // Open-close passes allowed before the step is redone with a shorter time step.
+  int max_open_close_iterations = 8;
+
+  // Time step control: cut factor on failure, growth factor per calm step (<= 1.3 per
+  // field notes), and the shortest step, as a fraction of time.step, before the run is
+  // declared failed.
+  double step_cut_factor = 0.3;
+  double step_growth_factor = 1.3;
+  double min_step_ratio = 1.0e-6;
+
+  // Largest penetration of a closed contact, as a fraction of half the model size
+  // (Shi: 2.5 x 0.0004). Deeper contacts raise the penalty and redo the step.
+  double max_penetration_ratio = 1.0e-3;
+  double penalty_raise_factor = 3.0;
+  int max_penalty_raises = 6;
+
+  // Contact search distance as a multiple of the largest displacement allowed per step.
+  double search_distance_factor = 2.5;
+
+  // Static passes that pre-load the contacts touching at t = 0 (forward/step/
+  // settle_contacts.hpp); 0 starts the dynamics with unloaded springs.
+  int settle_passes = 3;
+
+  // Plane strain (default, long slopes) or plane stress elasticity.
+  bool plane_strain = true;
+};
+
+// Returns an empty string when the options are usable, else "key: problem".
+std::string validate_options(const SimulationOptions& options);
+
+}  // namespace ddafit

@@ -1,0 +1,81 @@
+// The scene: everything a DDA run needs, as plain data. Built by the YAML reader
+// (forward/io) or in code (verification cases, benchmarks); the physics never sees YAML.
+// Units are SI, angles in degrees, y points up.
+#pragma once
+
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+#include "forward/options.hpp"
+
+namespace ddafit {
+
+using Vec2 = Eigen::Vector2d;
+
+struct Material {
+  std::string name;
+  double density = 0.0;        // kg/m^3
+  double young_modulus = 0.0;  // Pa
+  double poisson_ratio = 0.0;  // -, in [0, 0.5)
+};
+
+// Mohr-Coulomb interface with the bilinear roughness degradation of seed Eq. 2-3.
+struct Interface {
+  std::string name;
+  double friction_angle = 0.0;    // peak friction angle phi_p, degrees
+  double cohesion = 0.0;          // Pa, lost once the contact slides or opens
+  double tensile_strength = 0.0;  // Pa, lost once the contact slides or opens
+  double roughness_angle = 0.0;   // i, degrees; residual angle phi_b = phi_p - i
+  double critical_distance_ratio = 0.01;  // d_c / length of the overriding block
+};
+
+struct BlockInput {
+  std::string name;
+  std::string group;  // defaults to the name
+  int material = -1;  // index into Scene::materials
+  bool fixed = false;
+  std::vector<Vec2> polygon;  // any orientation on input; simple, non-degenerate
+  Vec2 velocity = Vec2::Zero();
+  double angular_velocity = 0.0;  // rad/s, counter-clockwise positive
+};
+
+// Interface used between two groups (order does not matter).
+struct ContactRule {
+  std::string group_a;
+  std::string group_b;
+  int interface = -1;  // index into Scene::interfaces
+};
+
+struct MeasurePoint {
+  std::string name;
+  Vec2 at = Vec2::Zero();  // a material point of the block that contains it at t = 0
+};
+
+struct Scene {
+  Vec2 gravity = Vec2(0.0, -9.81);
+  double duration = 0.0;  // s, end time
+  double max_step = 0.0;  // s, initial and largest time step
+  std::vector<Material> materials;
+  std::vector<Interface> interfaces;
+  std::vector<BlockInput> blocks;
+  std::vector<ContactRule> contact_rules;
+  int default_interface = -1;  // used by group pairs without a rule; -1 = none
+  std::vector<MeasurePoint> measure;
+  double output_interval = 0.0;  // s between history rows; 0 = every step
+  double rest_speed = 0.1;       // m/s; a point slower than this is at rest
+  SimulationOptions options;
+};
+
+// A problem found in a scene: `key` names the scene entry in YAML terms
+// (e.g. "blocks[3].polygon"), `problem` says what is wrong and what to do.
+struct SceneError {
+  std::string key;
+  std::string problem;
+};
+
+// Physical and geometric checks (simple polygons, no overlaps, valid materials,
+// measure points inside blocks, ...). Returns the first problem, if any.
+std::vector<SceneError> validate_scene(const Scene& scene);
+
+}  // namespace ddafit

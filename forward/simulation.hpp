@@ -1,0 +1,68 @@
+// The forward model in one call: a scene in, the measurement history and a summary out.
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "forward/block_system.hpp"
+#include "forward/scene.hpp"
+#include "forward/step_profile.hpp"
+
+namespace ddafit {
+
+struct HistoryRow {
+  double time = 0.0;
+  int point = 0;  // index into Scene::measure
+  Vec2 position = Vec2::Zero();
+  Vec2 displacement = Vec2::Zero();  // since t = 0
+  Vec2 velocity = Vec2::Zero();
+};
+
+struct PointSummary {
+  std::string name;
+  double max_lateral_displacement = 0.0;  // max |u_x|, m
+  double max_total_displacement = 0.0;    // max |u|, m
+  double peak_lateral_velocity = 0.0;     // max |v_x|, m/s
+  double peak_total_velocity = 0.0;       // max |v|, m/s
+  double duration = 0.0;  // last time the point's speed was >= rest_speed, s
+  bool stopped = false;   // speed below rest_speed at the end of the run
+};
+
+struct RunCounters {
+  long steps = 0;
+  long open_close_iterations = 0;
+  long step_cuts = 0;       // steps redone with a shorter time step
+  long penalty_raises = 0;  // steps redone with a stiffer penalty
+  double final_penalty = 0.0;
+  double smallest_step = 0.0;
+  double largest_step = 0.0;
+  double simulated_time = 0.0;
+};
+
+enum class RunStatus { Completed, InvalidScene, Failed };
+
+struct SimulationSummary {
+  RunStatus status = RunStatus::Completed;
+  std::string message;  // the diagnosis when status != Completed
+  std::vector<PointSummary> points;
+  RunCounters run;
+  StepProfile profile;
+};
+
+struct SimulationResult {
+  SimulationSummary summary;
+  std::vector<HistoryRow> history;
+};
+
+// Optional observers of a run. None of them may throw.
+struct SimulationHooks {
+  // Called at every output time (t = 0, each output interval, and the end).
+  std::function<void(double time, const BlockSystem& system)> on_output;
+  // Called about once per second of wall time with the simulated time reached.
+  std::function<void(double time, double duration)> on_progress;
+};
+
+SimulationResult simulate(const Scene& scene, const SimulationHooks& hooks = {});
+
+}  // namespace ddafit

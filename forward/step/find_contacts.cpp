@@ -1,0 +1,160 @@
+#include "forward/step/find_contacts.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <unordered_map>
+
+namespace ddafit {
+namespace {
+
+// Vertices whose wedge dips more than about 9 degrees into the edge's block cannot
+// enter through that edge (Shi's angle test; it removes false contacts at corners).
+constexpr double kWedgeTolerance = 0.15;
+
+struct EdgeGrid {
+  double cell = 1.0;
+  std::vector<std::pair<std::uint64_t, int>> entries;  // (cell key, edge start vertex), sorted
+
+  static std::uint64_t key(long ix, long iy) {
+    return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(ix)) << 32) |
+           static_cast<std::uint32_t>(iy);
+  }
+  long index(double x) const { return static_cast<long>(std::floor(x / cell)); }
+};
+
+EdgeGrid build_edge_grid(const BlockSystem& s, double rho) {
+  EdgeGrid grid;
+  // Cell size: the mean edge length of free blocks, at least 2 rho, so that a typical
+  // edge covers a few cells and a vertex looks in exactly one.
+  double total = 0.0;
+  int count = 0;
+  for (const Block& b : s.blocks) {
+    if (b.fixed) continue;
+    for (int v = b.first_vertex; v < b.first_vertex + b.vertex_count; ++v) {
+      total += (s.vertices[s.next_vertex(v)] - s.vertices[v]).norm();
+      ++count;
+    }
+  }
+  grid.cell = std::max(count ? total / count : 1.0, 2.0 * rho);
+  for (int v = 0; v < static_cast<int>(s.vertices.size()); ++v) {
+    const Vec2& a = s.vertices[v];
+    const Vec2& b = s.vertices[s.next_vertex(v)];
+    const long x0 = grid.index(std::min(a.x(), b.x()) - rho), x1 = grid.index(std::max(a.x(), b.x()) + rho);
+    const long y0 = grid.index(std::min(a.y(), b.y()) - rho), y1 = grid.index(std::max(a.y(), b.y()) + rho);
+    // Long edges only register in the cells their inflated segment passes through.
+    const Vec2 d = b - a;
+    const double len = d.norm();
+    const Vec2 n = len > 0 ? Vec2(-d.y(), d.x()) / len : Vec2(0, 0);
+    const double reach = rho + grid.cell * M_SQRT1_2;
+    for (long ix = x0; ix <= x1; ++ix)
+      for (long iy = y0; iy <= y1; ++iy) {
+        const Vec2 centre((ix + 0.5) * grid.cell, (iy + 0.5) * grid.cell);
+        if (std::abs((centre - a).dot(n)) > reach) continue;
+        grid.entries.emplace_back(EdgeGrid::key(ix, iy), v);
+      }
+  }
+  std::sort(grid.entries.begin(), grid.entries.end());
+  return grid;
+}
+
+struct Candidate {
+  int edge = -1;
+  int block_j = -1;
+  double gap = 0.0;
+  double ratio = 0.0;
+};
+
+}  // namespace
+
+const char* to_string(ContactState state) {
+  switch (state) {
+    case ContactState::Open: return "open";
+    case ContactState::Sliding: return "sliding";
+    case ContactState::Locked: return "locked";
+  }
+  return "?";
+}
+
+std::string find_contacts(const BlockSystem& s, const ContactSearch& search,
+                          std::vector<Contact>& contacts) {
+  const double rho = search.search_distance;
+  std::unordered_map<std::uint64_t, int> previous;
+  previous.reserve(contacts.size());
+  for (int k = 0; k < static_cast<int>(contacts.size()); ++k)
+    previous.emplace(contact_key(contacts[k].vertex, contacts[k].block_j), k);
+
+  const EdgeGrid grid = build_edge_grid(s, rho);
+  std::vector<Contact> found;
+  found.reserve(contacts.size() + 16);
+  std::vector<Candidate> best;  // best edge per touched block for the current vertex
+  std::string problem;
+
+  for (int v = 0; v < static_cast<int>(s.vertices.size()); ++v) {
+    const int bi = s.vertex_block[v];
+    const Vec2& p1 = s.vertices[v];
+    const Vec2 wedge_a = (s.vertices[s.next_vertex(v)] - p1).normalized();
+    const Vec2 wedge_b = (s.vertices[s.previous_vertex(v)] - p1).normalized();
+    const auto key = EdgeGrid::key(grid.index(p1.x()), grid.index(p1.y()));
+    auto it = std::lower_bound(grid.entries.begin(), grid.entries.end(), std::make_pair(key, -1));
+    best.clear();
+    for (; it != grid.entries.end() && it->first == key; ++it) {
+      const int e = it->second;
+      const int bj = s.vertex_block[e];
+      if (bj == bi || (s.blocks[bi].fixed && s.blocks[bj].fixed)) continue;
+      const Vec2& p2 = s.vertices[e];
+      const Vec2& p3 = s.vertices[s.next_vertex(e)];
+      const Vec2 d = p3 - p2;
+      const double l = d.norm();
+      const Vec2 t = d / l;
+      const Vec2 outward(t.y(), -t.x());  // block j lies to the left of P2->P3
+      const double gap = (p1 - p2).dot(outward);
+      if (gap >= rho || gap <= -rho) continue;
+      const double ratio = (p1 - p2).dot(t) / l;
+      const double extension = std::min(rho, 0.25 * l) / l;  // catches vertex-vertex approach
+      if (ratio < -extension || ratio > 1.0 + extension) continue;
+      if (wedge_a.dot(outward) < -kWedgeTolerance || wedge_b.dot(outward) < -kWedgeTolerance) continue;
+      // One contact per (vertex, block): keep the edge with the least penetration,
+      // which is the edge the vertex entered through (Shi's entrance rule, simplified).
+      auto slot = std::find_if(best.begin(), best.end(), [&](const Candidate& c) { return c.block_j == bj; });
+      if (slot == best.end()) {
+        best.push_back({e, bj, gap, ratio});
+      } else if (gap > slot->gap) {
+        *slot = {e, bj, gap, ratio};
+      }
+    }
+    for (const Candidate& c : best) {
+      Contact contact;
+      const auto old = previous.find(contact_key(v, c.block_j));
+      if (old != previous.end()) {
+        contact = contacts[old->second];
+        if (contact.edge != c.edge) contact.reference_ratio = c.ratio;  // vertex moved onto a neighbouring edge
+      } else {
+        contact.vertex = v;
+        contact.block_i = bi;
+        contact.block_j = c.block_j;
+        contact.interface = s.interface_between(bi, c.block_j);
+        if (contact.interface < 0 && problem.empty()) {
+          problem = "blocks '" + s.block_names[bi] + "' and '" + s.block_names[c.block_j] + "' (groups '" +
+                    s.group_names[s.blocks[bi].group] + "', '" + s.group_names[s.blocks[c.block_j].group] +
+                    "') touch but no interface is defined for that pair: add a contacts entry or default_interface";
+        }
+        contact.state = c.gap <= 0.0 ? ContactState::Locked : ContactState::Open;
+        contact.reference_ratio = c.ratio;
+        const Vec2 t = (s.vertices[s.next_vertex(c.edge)] - s.vertices[c.edge]).normalized();
+        const double ratio = contact.interface >= 0 ? s.interfaces[contact.interface].critical_distance_ratio : 0.01;
+        contact.critical_distance = ratio * block_length_along(s, bi, t);  // seed Eq. 2
+        // Cohesion acts on the parts of the vertex's two edges that lie along the contact.
+        contact.bond_length = 0.5 * (std::abs((s.vertices[s.next_vertex(v)] - p1).dot(t)) +
+                                     std::abs((s.vertices[s.previous_vertex(v)] - p1).dot(t)));
+        contact.bonded = search.first_step && c.gap <= 0.0;
+      }
+      contact.edge = c.edge;
+      contact.step_state = contact.state;
+      found.push_back(contact);
+    }
+  }
+  contacts.swap(found);
+  return problem;
+}
+
+}  // namespace ddafit

@@ -1,0 +1,37 @@
+// Stage 3 of a step: Shi's open-close iteration. Assemble with the current contact
+// states, solve, re-check the contacts, and repeat until no state changes (and the
+// normal forces that drive friction have settled).
+#pragma once
+
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+#include "forward/block_system.hpp"
+#include "forward/contact.hpp"
+#include "forward/options.hpp"
+#include "forward/sparse_system.hpp"
+#include "forward/step/assemble.hpp"
+#include "forward/step_profile.hpp"
+
+namespace ddafit {
+
+struct OpenCloseResult {
+  bool converged = false;
+  bool solver_failed = false;
+  int iterations = 0;
+  int unsettled_contact = -1;  // a contact still changing state when the iteration gave up
+  std::string reason;
+};
+
+// Relative change of the normal force of sliding contacts below which friction is
+// considered settled (friction ~ N, and the slide acceleration is a small difference
+// of gravity and friction, so N must be accurate to much better than 1 %).
+constexpr double kNormalForceTolerance = 1e-4;
+
+OpenCloseResult open_close_iterate(const BlockSystem& system, std::vector<Contact>& contacts,
+                                   const StepParameters& step, const SimulationOptions& options,
+                                   SparseSolver& solver, BlockSparseMatrix& k, Eigen::VectorXd& f,
+                                   Eigen::VectorXd& d, StepProfile& profile);
+
+}  // namespace ddafit

@@ -1,0 +1,32 @@
+// Stage 0, before the first step: pre-load the contacts that touch at t = 0.
+//
+// A block laid on a slope starts with unloaded penalty springs. In the first dynamic
+// step it drops into them and its normal force, hence its friction, is about half the
+// static value: a downslope velocity error of ~2.5 mm/s that the seed's incline check
+// would carry for the whole run (6 % of the displacement at 1 cm of travel). Shi's
+// static step cures this: solve with inertia but zero velocity, move the blocks, keep
+// their velocities, repeat. Each pass closes the gap to equilibrium by the factor
+// (2M/dt^2) / (2M/dt^2 + K): the passes use a step kSettleStepScale times longer than
+// the run's, which makes the inertia small beside the springs and the elastic blocks
+// (the factor falls below 1e-2 for the incline check, and the pre-load converges).
+// Only blocks that touch something move; blocks in flight are left exactly as given.
+// A pass that would move a block more than `max_shift` is not applied: such a block is
+// not near equilibrium (a block balanced on a corner), and the dynamics take over.
+#pragma once
+
+#include <vector>
+
+#include "forward/block_system.hpp"
+#include "forward/contact.hpp"
+#include "forward/sparse_system.hpp"
+#include "forward/step/assemble.hpp"
+
+namespace ddafit {
+
+constexpr double kSettleStepScale = 30.0;
+
+// Returns false if the solver fails.
+bool settle_contacts(BlockSystem& system, std::vector<Contact>& contacts, const StepParameters& step,
+                     int passes, double max_shift, SparseSolver& solver);
+
+}  // namespace ddafit

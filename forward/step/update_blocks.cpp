@@ -1,0 +1,72 @@
+#include "forward/step/update_blocks.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "forward/step/assemble.hpp"
+
+namespace ddafit {
+
+double max_vertex_displacement(const BlockSystem& s, const Eigen::VectorXd& d) {
+  double largest = 0.0;
+  for (const Block& b : s.blocks) {
+    if (b.unknown < 0) continue;
+    const Vec6 db = d.segment<6>(6 * b.unknown);
+    for (int v = b.first_vertex; v < b.first_vertex + b.vertex_count; ++v)
+      largest = std::max(largest, exact_point_displacement(s.vertices[v], b.centroid, db).norm());
+  }
+  return largest;
+}
+
+double max_penetration(const std::vector<Contact>& contacts, int* which) {
+  double deepest = 0.0;
+  for (int k = 0; k < static_cast<int>(contacts.size()); ++k) {
+    const Contact& c = contacts[k];
+    if (c.state != ContactState::Open && -c.normal_gap > deepest) {
+      deepest = -c.normal_gap;
+      if (which) *which = k;
+    }
+  }
+  return deepest;
+}
+
+void update_blocks(BlockSystem& s, std::vector<Contact>& contacts, const Eigen::VectorXd& d, double dt,
+                   double shear_penalty) {
+  for (int bid = 0; bid < static_cast<int>(s.blocks.size()); ++bid) {
+    Block& b = s.blocks[bid];
+    if (b.unknown < 0) continue;
+    const Vec6 db = d.segment<6>(6 * b.unknown);
+    for (int v = b.first_vertex; v < b.first_vertex + b.vertex_count; ++v)
+      s.vertices[v] += exact_point_displacement(s.vertices[v], b.centroid, db);
+    // Constant acceleration over the step: V1 = 2 D / dt - V0.
+    b.velocity = (2.0 / dt) * db - b.velocity;
+    b.stress += s.elastic[b.material] * db.segment<3>(3);
+  }
+  // Material points move with the same map, before the centroids are refreshed.
+  for (MaterialPoint& p : s.points) {
+    const Block& b = s.blocks[p.block];
+    if (b.unknown < 0) continue;
+    p.position += exact_point_displacement(p.position, b.centroid, d.segment<6>(6 * b.unknown));
+  }
+  for (int bid = 0; bid < static_cast<int>(s.blocks.size()); ++bid)
+    if (!s.blocks[bid].fixed) refresh_block_geometry(s, bid);
+
+  for (Contact& c : contacts) {
+    if (c.state == ContactState::Locked) continue;  // keeps its reference point, fixed to block j
+    const Vec2& p2 = s.vertices[c.edge];
+    const Vec2 e = s.vertices[s.next_vertex(c.edge)] - p2;
+    double offset = 0.0;
+    if (c.state == ContactState::Sliding) {
+      c.accumulated_slip += std::abs(sliding_slip(c));  // seed Eq. 2
+      // The reference trails the vertex by the friction force over the shear spring, so
+      // that should the contact lock in the next step, its spring takes over at the
+      // friction force instead of at zero: a sudden loss of resistance at every stick
+      // feeds stick-slip vibration at short time steps.
+      offset = c.slip_direction * sliding_friction_force(s, c) / shear_penalty;
+    }
+    c.reference_ratio = ((s.vertices[c.vertex] - p2).dot(e) / e.norm() - offset) / e.norm();
+    c.bonded = false;  // cohesion and tension are lost once the contact slides or opens
+  }
+}
+
+}  // namespace ddafit

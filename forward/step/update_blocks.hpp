@@ -1,0 +1,22 @@
+// Stage 5 of a step, once it is accepted: move the blocks (exact rotation), carry the
+// velocities and stresses forward, and advance the contacts' slip and reference points.
+#pragma once
+
+#include <Eigen/Core>
+#include <vector>
+
+#include "forward/block_system.hpp"
+#include "forward/contact.hpp"
+
+namespace ddafit {
+
+// Largest displacement of any vertex over the step for the solved unknowns d.
+double max_vertex_displacement(const BlockSystem& system, const Eigen::VectorXd& d);
+
+// Deepest penetration (> 0) among closed contacts, and which contact it is.
+double max_penetration(const std::vector<Contact>& contacts, int* which = nullptr);
+
+void update_blocks(BlockSystem& system, std::vector<Contact>& contacts, const Eigen::VectorXd& d,
+                   double time_step, double shear_penalty);
+
+}  // namespace ddafit

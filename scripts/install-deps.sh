@@ -1,0 +1,17 @@
+#!/usr/bin/env bash
+# Installs every Debian 12 package ddafit needs to build, test and benchmark.
+# The one list of dependencies: the README's commands and CI both call this.
+set -euo pipefail
+export DEBIAN_FRONTEND=noninteractive
+packages=(
+  cmake make g++                 # toolchain
+  libeigen3-dev                  # small dense algebra (6x6 blocks)
+  libsuitesparse-dev             # CHOLMOD sparse Cholesky
+  libyaml-cpp-dev                # scene files
+  libcli11-dev libfmt-dev nlohmann-json3-dev   # command line, formatting, summary.json
+  libgtest-dev libgmock-dev      # tests
+  libbenchmark-dev               # bench/
+)
+if [ "$(id -u)" -ne 0 ]; then sudo=sudo; else sudo=; fi
+$sudo apt-get update -qq
+$sudo apt-get install -y -qq --no-install-recommends "${packages[@]}" > /dev/null

@@ -1,0 +1,125 @@
+// The command-line contract: output files, exit codes and one-line errors.
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct CommandResult {
+  int code = -1;
+  std::string out, err;
+};
+
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+CommandResult ddafit(const std::string& args, const std::string& tag) {
+  const fs::path dir = fs::path(DDAFIT_TEST_TMP) / tag;
+  fs::create_directories(dir);
+  const std::string cmd = std::string(DDAFIT_BINARY) + " " + args + " > " + (dir / "stdout").string() + " 2> " +
+                          (dir / "stderr").string();
+  const int status = std::system(cmd.c_str());
+  CommandResult r;
+  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  r.out = slurp(dir / "stdout");
+  r.err = slurp(dir / "stderr");
+  return r;
+}
+
+fs::path write_scene(const std::string& tag, const std::string& text) {
+  const fs::path dir = fs::path(DDAFIT_TEST_TMP) / tag;
+  fs::create_directories(dir);
+  const fs::path p = dir / "scene.yaml";
+  std::ofstream(p) << text;
+  return p;
+}
+
+const std::string kIncline = std::string(DDAFIT_CASES_DIR) + "/verification/incline_i5.yaml";
+
+TEST(Cli, SimulateWritesHistoryAndSummary) {
+  const fs::path out = fs::path(DDAFIT_TEST_TMP) / "simulate_ok" / "out";
+  const CommandResult r = ddafit("simulate " + kIncline + " --out " + out.string() + " --quiet", "simulate_ok");
+  ASSERT_EQ(r.code, 0) << r.err;
+  std::ifstream csv(out / "history.csv");
+  std::string header;
+  std::getline(csv, header);
+  EXPECT_EQ(header, "time,point,x,y,ux,uy,vx,vy");  // exact header is part of the contract
+  int rows = 0;
+  for (std::string line; std::getline(csv, line);) ++rows;
+  EXPECT_EQ(rows, 201);  // t = 0, 0.01, ..., 2.00 s for the one point P1
+  const auto j = nlohmann::json::parse(slurp(out / "summary.json"));
+  for (const char* key : {"max_lateral_displacement", "max_total_displacement", "peak_lateral_velocity",
+                          "peak_total_velocity", "duration", "stopped"})
+    EXPECT_TRUE(j["points"]["P1"].contains(key)) << key;
+  for (const char* key : {"steps", "open_close_iterations", "step_cuts", "penalty_raises", "wall_seconds"})
+    EXPECT_TRUE(j["run"].contains(key)) << key;
+  EXPECT_EQ(j["run"]["steps"].get<int>(), 2000);  // 2 s at the largest step, no cuts needed
+  // The block accelerates to 1.194 m/s^2 after 2.2 cm: it never reaches rest in 2 s.
+  EXPECT_FALSE(j["points"]["P1"]["stopped"].get<bool>());
+  EXPECT_DOUBLE_EQ(j["points"]["P1"]["duration"].get<double>(), 2.0);
+}
+
+TEST(Cli, SimulateWithoutSceneRunsBuiltInCase) {
+  const fs::path out = fs::path(DDAFIT_TEST_TMP) / "simulate_default" / "out";
+  const CommandResult r = ddafit("simulate --out " + out.string() + " --quiet", "simulate_default");
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_TRUE(fs::exists(out / "history.csv"));
+}
+
+TEST(Cli, MalformedSceneExitsTwoWithOneLine) {
+  const fs::path scene = write_scene("bad_yaml", "time: {duration: 1, step: [\n");
+  const CommandResult r = ddafit("simulate " + scene.string() + " --out /tmp/ddafit-never", "bad_yaml");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find(scene.string()), std::string::npos) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;  // one line
+}
+
+TEST(Cli, NegativeStiffnessNamesTheKey) {
+  std::string text = slurp(kIncline);
+  const auto at = text.find("young_modulus: 5e+09");
+  ASSERT_NE(at, std::string::npos);
+  text.replace(at, 20, "young_modulus: -5e+09");
+  const fs::path scene = write_scene("negative_e", text);
+  const CommandResult r = ddafit("simulate " + scene.string() + " --quiet", "negative_e");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("young_modulus"), std::string::npos) << r.err;
+}
+
+TEST(Cli, FailedRunExitsThreeWithDiagnosis) {
+  // A penalty far too soft, with no raises allowed: the slider sinks into the plane.
+  std::string text = slurp(kIncline) + "control: {penalty: 1000, max_penalty_raises: 0}\n";
+  const fs::path scene = write_scene("soft_penalty", text);
+  const fs::path out = fs::path(DDAFIT_TEST_TMP) / "soft_penalty" / "out";
+  const CommandResult r = ddafit("simulate " + scene.string() + " --out " + out.string() + " --quiet", "soft_penalty");
+  EXPECT_EQ(r.code, 3);
+  EXPECT_NE(r.err.find("penetration"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("slider"), std::string::npos) << r.err;       // names the block
+  EXPECT_NE(r.err.find("control.penalty"), std::string::npos) << r.err;  // says what to change
+  const std::string summary = slurp(out / "summary.json");
+  EXPECT_NE(summary.find("\"failed\""), std::string::npos);
+  EXPECT_EQ(summary.find("nan"), std::string::npos);
+}
+
+TEST(Cli, UnknownOptionExitsTwo) {
+  const CommandResult r = ddafit("simulate --no-such-flag", "bad_flag");
+  EXPECT_EQ(r.code, 2);
+}
+
+TEST(Cli, VerifyPrintsRowsAndPasses) {
+  const CommandResult r = ddafit("verify --only thrown", "verify_thrown");
+  EXPECT_EQ(r.code, 0) << r.out << r.err;
+  EXPECT_NE(r.out.find("1 passed, 0 failed"), std::string::npos) << r.out;
+}
+
+}  // namespace

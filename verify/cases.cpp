@@ -1,0 +1,105 @@
+#include "verify/cases.hpp"
+
+#include <cmath>
+
+namespace ddafit::verification {
+namespace {
+
+Scene base_scene(double duration, double step, double output_interval) {
+  Scene s;
+  s.duration = duration;
+  s.max_step = step;
+  s.output_interval = output_interval;
+  s.materials.push_back({"rock", 2700.0, 5.0e9, 0.25});
+  return s;
+}
+
+std::vector<Vec2> box(Vec2 origin, Vec2 along, Vec2 up, double length, double height) {
+  return {origin, origin + length * along, origin + length * along + height * up, origin + height * up};
+}
+
+BlockInput block(const std::string& name, std::vector<Vec2> polygon, bool fixed) {
+  BlockInput b;
+  b.name = name;
+  b.group = name;
+  b.material = 0;
+  b.fixed = fixed;
+  b.polygon = std::move(polygon);
+  return b;
+}
+
+}  // namespace
+
+Scene incline_scene(const InclineSetup& setup) {
+  Scene s = base_scene(setup.duration, setup.time_step, setup.output_interval);
+  Interface face;
+  face.name = "interface";
+  face.friction_angle = setup.friction_angle;
+  face.roughness_angle = setup.roughness_angle;
+  face.critical_distance_ratio = 0.01;
+  s.interfaces.push_back(face);
+  s.default_interface = 0;
+  // The slope descends to the right: 30 m run, 15 m drop for a 2:1 slope.
+  const double run = 30.0, drop = run * setup.slope_ratio;
+  s.blocks.push_back(block("plane", {{0, 0}, {run, -drop}, {run, -drop - 2}, {0, -2}}, true));
+  const Vec2 along = Vec2(run, -drop).normalized();
+  const Vec2 up(-along.y(), along.x());
+  const Vec2 origin = 2.0 * along;
+  s.blocks.push_back(block("slider", box(origin, along, up, kInclineBlockLength, kInclineBlockHeight), false));
+  s.measure.push_back({"P1", origin + 0.5 * kInclineBlockLength * along + 0.5 * kInclineBlockHeight * up});
+  return s;
+}
+
+Scene thrown_block_scene() {
+  Scene s = base_scene(2.0, 1.0e-3, 0.01);
+  BlockInput b = block("stone", box({0, 0}, {1, 0}, {0, 1}, 1.0, 0.5), false);
+  b.velocity = Vec2(5.0, 10.0);
+  s.blocks.push_back(b);
+  s.measure.push_back({"C", {0.5, 0.25}});
+  return s;
+}
+
+Scene spinning_block_scene(double turns) {
+  Scene s = base_scene(turns, 1.0e-3, 0.1);  // 2 pi rad/s: one turn per second
+  s.gravity = Vec2::Zero();
+  BlockInput b = block("wheel", box({-0.5, -0.5}, {1, 0}, {0, 1}, 1.0, 1.0), false);
+  b.angular_velocity = 2.0 * M_PI;
+  s.blocks.push_back(b);
+  s.measure.push_back({"corner", {0.4999, 0.4999}});
+  return s;
+}
+
+Scene stack_scene() {
+  Scene s = base_scene(5.0, 1.0e-3, 0.05);
+  Interface face;
+  face.name = "joint";
+  face.friction_angle = 30.0;
+  s.interfaces.push_back(face);
+  s.default_interface = 0;
+  s.blocks.push_back(block("ground", box({-2, -1}, {1, 0}, {0, 1}, 5.0, 1.0), true));
+  for (int k = 0; k < 5; ++k) {
+    const std::string name = "b" + std::to_string(k + 1);
+    s.blocks.push_back(block(name, box({0, static_cast<double>(k)}, {1, 0}, {0, 1}, 1.0, 1.0), false));
+  }
+  s.measure.push_back({"top", {0.5, 4.5}});
+  return s;
+}
+
+Scene collision_scene() {
+  Scene s = base_scene(0.5, 1.0e-4, 0.01);
+  s.gravity = Vec2::Zero();
+  Interface face;
+  face.name = "smooth";
+  face.friction_angle = 0.0;
+  s.interfaces.push_back(face);
+  s.default_interface = 0;
+  BlockInput a = block("striker", box({0, 0}, {1, 0}, {0, 1}, 1.0, 1.0), false);
+  a.velocity = Vec2(4.0, 0.0);
+  s.blocks.push_back(a);
+  s.blocks.push_back(block("target", box({1.5, 0}, {1, 0}, {0, 1}, 1.0, 1.0), false));
+  s.measure.push_back({"striker", {0.5, 0.5}});
+  s.measure.push_back({"target", {2.0, 0.5}});
+  return s;
+}
+
+}  // namespace ddafit::verification

@@ -1,0 +1,33 @@
+// The analytic verification scenes, defined once in code and shared by `ddafit verify`,
+// the GoogleTest suite and the benchmarks. cases/verification/*.yaml are the same
+// scenes for users to open and edit; a test keeps the two in step.
+#pragma once
+
+#include "forward/scene.hpp"
+
+namespace ddafit::verification {
+
+// Seed section 2.3: a 2.23 m x 2.05 m block on a 2:1 slope (alpha = 26.565 deg),
+// peak friction phi, roughness i, d_c = 1 % of the block length along the slope.
+struct InclineSetup {
+  double friction_angle = 25.0;  // deg
+  double roughness_angle = 0.0;  // deg
+  double slope_ratio = 0.5;      // tan(alpha)
+  double duration = 2.0;         // s
+  double time_step = 1.0e-3;     // s
+  double output_interval = 0.01; // s
+};
+constexpr double kInclineBlockLength = 2.23;  // m, along the slope
+constexpr double kInclineBlockHeight = 2.05;  // m
+Scene incline_scene(const InclineSetup& setup);
+
+// A free block thrown under gravity, no contacts: a parabola, integrated exactly.
+Scene thrown_block_scene();
+// A square spinning freely without gravity at 2 pi rad/s.
+Scene spinning_block_scene(double turns);
+// Five 1 m blocks stacked on a fixed base.
+Scene stack_scene();
+// Two blocks in free space, one moving into the other at rest.
+Scene collision_scene();
+
+}  // namespace ddafit::verification
