@@ -33,6 +33,10 @@ struct Contact {
   double bond_length = 0.0;        // l_c: length that cohesion and tension act on
   bool bonded = false;             // cohesion and tensile strength still intact
 
+  // State changes in the current step's open-close iteration; a contact that keeps
+  // cycling is frozen (check_contacts.cpp).
+  int state_changes = 0;
+
   // Last iterate's kinematics, used to classify and to accept the step.
   double normal_gap = 0.0;   // d_n at the end of the step (m, < 0 = penetration)
   double step_slip = 0.0;    // relative tangential motion of P1 over the step (m)

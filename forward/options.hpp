@@ -36,6 +36,10 @@ struct SimulationOptions {
   double penalty_raise_factor = 3.0;
   int max_penalty_raises = 6;
 
+  // Contact tolerance as a fraction of the largest displacement allowed per step: gaps
+  // and back-slips smaller than this do not change a contact's state (assemble.hpp).
+  double contact_tolerance_ratio = 1e-7;
+
   // Contact search distance as a multiple of the largest displacement allowed per step.
   double search_distance_factor = 2.5;
 

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 #include "forward/sparse_system.hpp"
@@ -64,6 +65,36 @@ void record_history(const BlockSystem& s, double time, std::vector<HistoryRow>& 
   }
 }
 
+// The time step below which friction-induced vibration of the blocks' elastic modes
+// is no longer damped by the time scheme: a fraction of the smallest free block's
+// elastic period L / c, c = sqrt(E / rho). Measured on the seed's incline (see
+// docs/verification.md, "Stability map"): 5e-4 s gave 0.06 % error, 2e-4 s gave 11 %,
+// with L / c = 1.6 ms.
+constexpr double kElasticPeriodFraction = 0.25;
+
+std::string time_step_warning(const Scene& scene, const BlockSystem& s) {
+  double shortest = std::numeric_limits<double>::infinity();
+  int which = -1;
+  for (int b = 0; b < static_cast<int>(s.blocks.size()); ++b) {
+    const Block& block = s.blocks[b];
+    if (block.fixed) continue;
+    const Material& m = scene.materials[block.material];
+    const double period = std::sqrt(block.area) / std::sqrt(m.young_modulus / m.density);
+    if (period < shortest) {
+      shortest = period;
+      which = b;
+    }
+  }
+  if (which < 0 || scene.max_step >= kElasticPeriodFraction * shortest) return {};
+  std::ostringstream out;
+  out << "time.step " << scene.max_step << " s is below " << kElasticPeriodFraction
+      << " x the elastic period of block '" << s.block_names[which] << "' (" << shortest
+      << " s): friction can feed a spurious vibration of the blocks that lowers the mean friction "
+         "(docs/theory.md, known limits); use time.step >= "
+      << kElasticPeriodFraction * shortest << " s";
+  return out.str();
+}
+
 }  // namespace
 
 SimulationResult simulate(const Scene& scene, const SimulationHooks& hooks) {
@@ -78,6 +109,7 @@ SimulationResult simulate(const Scene& scene, const SimulationHooks& hooks) {
   }
 
   BlockSystem system = build_block_system(scene);
+  if (std::string w = time_step_warning(scene, system); !w.empty()) summary.warnings.push_back(w);
   for (const MeasurePoint& m : scene.measure) summary.points.push_back({m.name});
   TimeStepControl control =
       make_time_step_control(options, scene.max_step, system.half_model_size, automatic_penalty(scene));
@@ -99,11 +131,21 @@ SimulationResult simulate(const Scene& scene, const SimulationHooks& hooks) {
   const double end_slack = 1e-9 * scene.duration;
 
   if (options.settle_passes > 0) {
-    ScopedTimer timer(profile.find_contacts);
-    const std::string problem = find_contacts(system, search, contacts);
+    // The contacts touching at t = 0 start loaded (forward/step/settle_contacts.hpp).
+    std::string problem;
+    {
+      ScopedTimer timer(profile.find_contacts);
+      problem = find_contacts(system, search, contacts);
+    }
+    if (!problem.empty()) {
+      summary.status = RunStatus::InvalidScene;
+      summary.message = "t = 0: " + problem;
+      return result;
+    }
+    ScopedTimer timer(profile.settle);
     const StepParameters step{control.step, control.penalty, options.shear_penalty_ratio * control.penalty,
-                              scene.gravity};
-    if (problem.empty() && !settle_contacts(system, contacts, step, options.settle_passes, control.max_penetration, solver)) {
+                              scene.gravity, options.contact_tolerance_ratio * control.max_displacement};
+    if (!settle_contacts(system, contacts, step, options.settle_passes, control.max_penetration, solver)) {
       summary.status = RunStatus::Failed;
       summary.message = "t = 0: the initial contact settling could not be solved: check for blocks that "
                         "overlap or a penalty far stiffer than the blocks";
@@ -148,7 +190,8 @@ SimulationResult simulate(const Scene& scene, const SimulationHooks& hooks) {
         landing = target;
       }
       const StepParameters step{attempt, control.penalty, options.shear_penalty_ratio * control.penalty,
-                                scene.gravity};
+                                scene.gravity,
+                                options.contact_tolerance_ratio * control.max_displacement};
       const OpenCloseResult oc =
           open_close_iterate(system, contacts, step, options, solver, k, f, d, profile);
       run.open_close_iterations += oc.iterations;
@@ -167,14 +210,14 @@ SimulationResult simulate(const Scene& scene, const SimulationHooks& hooks) {
         if (depth > control.max_penetration) {
           const std::string where = describe_contact(system, contacts[deepest]);
           contacts = saved;
-          ++run.penalty_raises;
           if (!raise_penalty(control, options)) {
             fail(RunStatus::Failed, "penetration " + std::to_string(depth) + " m at the " + where +
-                                        " stays above the limit after " + std::to_string(options.max_penalty_raises) +
-                                        " penalty raises: lower time.step or control.max_displacement_ratio, or "
-                                        "raise control.penalty");
+                                        " stays above the limit after " + std::to_string(control.penalty_raises) +
+                                        " penalty raises in this run (control.max_penalty_raises): lower time.step "
+                                        "or control.max_displacement_ratio, or raise control.penalty");
             break;
           }
+          ++run.penalty_raises;
           continue;
         }
         accepted = true;

@@ -45,6 +45,7 @@ enum class RunStatus { Completed, InvalidScene, Failed };
 struct SimulationSummary {
   RunStatus status = RunStatus::Completed;
   std::string message;  // the diagnosis when status != Completed
+  std::vector<std::string> warnings;  // settings known to degrade results (docs/theory.md)
   std::vector<PointSummary> points;
   RunCounters run;
   StepProfile profile;

@@ -118,9 +118,13 @@ bool SparseSolver::solve(const BlockSparseMatrix& k, const Eigen::VectorXd& rhs,
   cholmod_dense* b = cholmod_allocate_dense(n, 1, n, CHOLMOD_REAL, &common_);
   std::copy(rhs.data(), rhs.data() + n, static_cast<double*>(b->x));
   cholmod_dense* sol = cholmod_solve(CHOLMOD_A, factor_, b, &common_);
+  cholmod_free_dense(&b, &common_);
+  if (sol == nullptr) {
+    reason = "CHOLMOD solve failed (status " + std::to_string(common_.status) + ")";
+    return false;
+  }
   x.resize(n);
   std::copy(static_cast<double*>(sol->x), static_cast<double*>(sol->x) + n, x.data());
-  cholmod_free_dense(&b, &common_);
   cholmod_free_dense(&sol, &common_);
   if (!x.allFinite()) {
     reason = "the solution has non-finite values (ill-conditioned system: penalty too stiff?)";

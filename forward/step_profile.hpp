@@ -6,6 +6,7 @@
 namespace ddafit {
 
 struct StepProfile {
+  double settle = 0.0;          // pre-loading the contacts touching at t = 0, s
   double find_contacts = 0.0;   // broad and narrow phase, s
   double assemble = 0.0;        // block and contact terms, s
   double solve = 0.0;           // CHOLMOD analysis, factorisation and solve, s

@@ -363,6 +363,8 @@ std::string validate_options(const SimulationOptions& o) {
        o.max_penalty_raises >= 0, "must be >= 0"},
       {"settle_passes", static_cast<double>(o.settle_passes), o.settle_passes >= 0 && o.settle_passes <= 100,
        "must be in [0, 100]"},
+      {"contact_tolerance_ratio", o.contact_tolerance_ratio,
+       o.contact_tolerance_ratio >= 0 && o.contact_tolerance_ratio <= 0.1, "must be in [0, 0.1]"},
       {"search_distance_factor", o.search_distance_factor,
        o.search_distance_factor >= 1 && std::isfinite(o.search_distance_factor), "must be >= 1"},
   };

@@ -68,6 +68,7 @@ TEST(Cli, SimulateWritesHistoryAndSummary) {
   // The block accelerates to 1.194 m/s^2 after 2.2 cm: it never reaches rest in 2 s.
   EXPECT_FALSE(j["points"]["P1"]["stopped"].get<bool>());
   EXPECT_DOUBLE_EQ(j["points"]["P1"]["duration"].get<double>(), 2.0);
+  EXPECT_TRUE(j["warnings"].empty());  // 1 ms is in the tested range
 }
 
 TEST(Cli, SimulateWithoutSceneRunsBuiltInCase) {
@@ -109,6 +110,23 @@ TEST(Cli, FailedRunExitsThreeWithDiagnosis) {
   const std::string summary = slurp(out / "summary.json");
   EXPECT_NE(summary.find("\"failed\""), std::string::npos);
   EXPECT_EQ(summary.find("nan"), std::string::npos);
+}
+
+TEST(Cli, ShortTimeStepIsWarnedAbout) {
+  // 1e-4 s resolves the 2.1 m block's elastic period (1.6 ms): docs/verification.md
+  // measured 12 % error there, so the run must say so rather than pass silently.
+  std::string text = slurp(kIncline);
+  const auto at = text.find("step: 0.001");
+  ASSERT_NE(at, std::string::npos);
+  text.replace(at, 11, "step: 0.0001");
+  text.replace(text.find("duration: 2"), 11, "duration: 0.01");
+  const fs::path scene = write_scene("short_step", text);
+  const fs::path out = fs::path(DDAFIT_TEST_TMP) / "short_step" / "out";
+  const CommandResult r = ddafit("simulate " + scene.string() + " --out " + out.string() + " --quiet", "short_step");
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.err.find("warning: time.step"), std::string::npos) << r.err;
+  const auto j = nlohmann::json::parse(slurp(out / "summary.json"));
+  EXPECT_EQ(j["warnings"].size(), 1u);
 }
 
 TEST(Cli, UnknownOptionExitsTwo) {

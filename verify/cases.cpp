@@ -28,6 +28,8 @@ BlockInput block(const std::string& name, std::vector<Vec2> polygon, bool fixed)
   return b;
 }
 
+double shift_of_top(int courses, double w) { return ((courses - 1) % 2) ? 0.5 * w : 0.0; }
+
 }  // namespace
 
 Scene incline_scene(const InclineSetup& setup) {
@@ -99,6 +101,27 @@ Scene collision_scene() {
   s.blocks.push_back(block("target", box({1.5, 0}, {1, 0}, {0, 1}, 1.0, 1.0), false));
   s.measure.push_back({"striker", {0.5, 0.5}});
   s.measure.push_back({"target", {2.0, 0.5}});
+  return s;
+}
+
+Scene brick_wall_scene(int courses, int per_course, double duration) {
+  Scene s = base_scene(duration, 1.0e-3, 0.01);
+  Interface face;
+  face.name = "joint";
+  face.friction_angle = 35.0;
+  s.interfaces.push_back(face);
+  s.default_interface = 0;
+  const double w = 1.0, h = 0.5;
+  s.blocks.push_back(block("floor", box({-2, -1}, {1, 0}, {0, 1}, per_course * w + 4, 1.0), true));
+  for (int c = 0; c < courses; ++c) {
+    // Odd courses are shifted by half a brick, as in a real wall.
+    const double shift = (c % 2) ? 0.5 * w : 0.0;
+    for (int k = 0; k < per_course; ++k) {
+      const std::string name = "brick_" + std::to_string(c) + "_" + std::to_string(k);
+      s.blocks.push_back(block(name, box({shift + k * w, c * h}, {1, 0}, {0, 1}, w, h), false));
+    }
+  }
+  s.measure.push_back({"top", {shift_of_top(courses, w) + 0.5 * w, (courses - 0.5) * h}});
   return s;
 }
 

@@ -30,4 +30,8 @@ Scene stack_scene();
 // Two blocks in free space, one moving into the other at rest.
 Scene collision_scene();
 
+// A running-bond wall of `courses` x `per_course` bricks (1 m x 0.5 m) on a fixed floor:
+// the benchmark's many-contact scene (100 blocks for 10 x 10).
+Scene brick_wall_scene(int courses, int per_course, double duration);
+
 }  // namespace ddafit::verification

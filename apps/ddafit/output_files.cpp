@@ -34,6 +34,7 @@ void write_summary_json(const std::string& path, const std::string& scene_path, 
   j["scene"] = scene_path;
   j["status"] = status_name(s.status);
   if (!s.message.empty()) j["message"] = s.message;
+  j["warnings"] = s.warnings;
   j["points"] = nlohmann::ordered_json::object();
   for (const PointSummary& p : s.points) {
     j["points"][p.name] = {{"max_lateral_displacement", p.max_lateral_displacement},
@@ -52,7 +53,8 @@ void write_summary_json(const std::string& path, const std::string& scene_path, 
               {"smallest_step", s.run.smallest_step},
               {"largest_step", s.run.largest_step},
               {"final_penalty", s.run.final_penalty}};
-  j["profile_seconds"] = {{"find_contacts", s.profile.find_contacts},
+  j["profile_seconds"] = {{"settle", s.profile.settle},
+                          {"find_contacts", s.profile.find_contacts},
                           {"assemble", s.profile.assemble},
                           {"solve", s.profile.solve},
                           {"check_contacts", s.profile.check_contacts},

@@ -57,6 +57,7 @@ int run_simulate(const SimulateArgs& args) {
   }
 
   const SimulationSummary& s = result.summary;
+  for (const std::string& w : s.warnings) std::cerr << label << ": warning: " << w << "\n";
   if (s.status == RunStatus::InvalidScene) {
     std::cerr << label << ": " << s.message << "\n";
     return kExitBadInput;

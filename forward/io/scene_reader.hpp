@@ -69,6 +69,7 @@ inline constexpr ControlKey kControlKeys[] = {
     {"max_penetration_ratio", &SimulationOptions::max_penetration_ratio},
     {"penalty_raise_factor", &SimulationOptions::penalty_raise_factor},
     {"max_penalty_raises", &SimulationOptions::max_penalty_raises},
+    {"contact_tolerance_ratio", &SimulationOptions::contact_tolerance_ratio},
     {"search_distance_factor", &SimulationOptions::search_distance_factor},
     {"settle_passes", &SimulationOptions::settle_passes},
     {"plane_strain", &SimulationOptions::plane_strain},

@@ -74,9 +74,14 @@ void assemble(const BlockSystem& s, const std::vector<Contact>& contacts, const 
   f.setZero(6 * s.free_block_count);
   assemble_blocks(s, step, k, f);
   for (const Contact& c : contacts) {
-    if (c.state == ContactState::Open) continue;
     const Block& bi = s.blocks[c.block_i];
     const Block& bj = s.blocks[c.block_j];
+    if (c.state == ContactState::Open) {
+      // Keep the pair in the sparsity pattern, so that contacts opening and closing
+      // during the open-close iteration do not force a new symbolic analysis.
+      if (bi.unknown >= 0 && bj.unknown >= 0) k.add(bi.unknown, bj.unknown, Mat6::Zero());
+      continue;
+    }
     const ContactLinearization lin = linearize_contact(s, c);
     // Normal spring on d_n = A / l: stiffness p / l^2 on A.
     const double l2 = lin.edge_length * lin.edge_length;

@@ -16,6 +16,12 @@ struct StepParameters {
   double penalty = 0.0;        // normal contact spring, N/m
   double shear_penalty = 0.0;  // shear spring of locked contacts, N/m
   Vec2 gravity = Vec2::Zero();
+  // Contact tolerance, m: an open contact closes only when it penetrates deeper, and a
+  // sliding contact locks only when it slips back further. Contacts that carry almost
+  // no load otherwise flip state on gaps and slips of 1e-9 m set by the rest of the
+  // system, and the open-close iteration never settles (a standing brick wall needed
+  // 70 step cuts in 0.05 s without it).
+  double contact_tolerance = 0.0;
 };
 
 void assemble(const BlockSystem& system, const std::vector<Contact>& contacts,

@@ -11,6 +11,7 @@ namespace ddafit {
 ContactCheck check_contacts(const BlockSystem& s, std::vector<Contact>& contacts, const Eigen::VectorXd& d,
                             const StepParameters& step) {
   ContactCheck result;
+  double largest_change = 0.0, largest_force = 0.0;
   for (int k = 0; k < static_cast<int>(contacts.size()); ++k) {
     Contact& c = contacts[k];
     const Block& bi = s.blocks[c.block_i];
@@ -26,7 +27,8 @@ ContactCheck check_contacts(const BlockSystem& s, std::vector<Contact>& contacts
     const double tension_cap = c.bonded ? face.tensile_strength * c.bond_length : 0.0;
     const double compression = -step.penalty * c.normal_gap;  // N, negative in tension
 
-    if (-compression > tension_cap) {
+    const bool stays_open = before == ContactState::Open && c.normal_gap > -step.contact_tolerance;
+    if (-compression > tension_cap || stays_open) {
       c.state = ContactState::Open;
       c.normal_force = 0.0;
     } else {
@@ -35,12 +37,11 @@ ContactCheck check_contacts(const BlockSystem& s, std::vector<Contact>& contacts
         // A sliding contact stays sliding while it keeps slipping the same way
         // (sliding_slip: measured so that a spring letting go is not read as a
         // backward slip). A contact on the point of sticking has a slip of round-off
-        // size of either sign; the small allowance (1 % of the elastic offset that the
-        // friction force gives the shear spring, and at least 1e-9 of the edge length
-        // for frictionless contacts) stops it flipping between sliding and locked from
-        // one pass to the next.
+        // size of either sign; the allowance (the contact tolerance, plus 1 % of the
+        // elastic offset that the friction force gives the shear spring) stops it
+        // flipping between sliding and locked from one pass to the next.
         const double allowance =
-            0.01 * sliding_friction_force(s, c) / step.shear_penalty + 1e-9 * lin.edge_length;
+            step.contact_tolerance + 0.01 * sliding_friction_force(s, c) / step.shear_penalty;
         if (sliding_slip(c) * c.slip_direction <= -allowance) c.state = ContactState::Locked;
       } else {
         // Locked (or just closed): the shear spring must stay within Mohr-Coulomb.
@@ -55,15 +56,27 @@ ContactCheck check_contacts(const BlockSystem& s, std::vector<Contact>& contacts
         }
       }
     }
+    if (c.state != before && c.state_changes >= kFreezeAfterChanges) {
+      // This contact has cycled between states within the step: its gap and slip swing
+      // by round-off-sized amounts as its neighbours change. Keep its state for the rest
+      // of the step; the error is bounded by the size of the swing.
+      c.state = before;
+      c.normal_force = before == ContactState::Open ? 0.0 : std::max(compression, 0.0);
+      ++result.frozen;
+    }
     if (c.state != before) {
+      ++c.state_changes;
       ++result.changed;
       if (result.first_changed < 0) result.first_changed = k;
     } else if (c.state == ContactState::Sliding) {
       // Only sliding contacts feed N back into the load vector.
-      const double scale = std::max({c.normal_force, force_before, 1e-300});
-      result.max_force_change = std::max(result.max_force_change, std::abs(c.normal_force - force_before) / scale);
+      largest_change = std::max(largest_change, std::abs(c.normal_force - force_before));
     }
+    largest_force = std::max(largest_force, c.normal_force);
   }
+  // Relative to the largest contact force: a nearly unloaded contact whose N changes by
+  // half of nothing does not hold up the iteration.
+  result.max_force_change = largest_force > 0.0 ? largest_change / largest_force : 0.0;
   return result;
 }
 

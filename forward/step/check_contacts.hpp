@@ -12,10 +12,15 @@
 
 namespace ddafit {
 
+// A contact that changed state this often within one step keeps its state for the
+// rest of that step's open-close iteration.
+constexpr int kFreezeAfterChanges = 3;
+
 struct ContactCheck {
+  int frozen = 0;                 // contacts held in their state because they cycle
   int changed = 0;                // contacts whose state differs from the last iterate
   int first_changed = -1;         // index of one of them, for diagnoses
-  double max_force_change = 0.0;  // largest relative change of a closed contact's N
+  double max_force_change = 0.0;  // largest change of a sliding contact's N / largest N
 };
 
 ContactCheck check_contacts(const BlockSystem& system, std::vector<Contact>& contacts,

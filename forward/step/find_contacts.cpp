@@ -57,6 +57,20 @@ EdgeGrid build_edge_grid(const BlockSystem& s, double rho) {
   return grid;
 }
 
+// d_c of seed Eq. 2: a fraction of the overriding block's length along the edge.
+double critical_distance(const BlockSystem& s, int interface, int block_i, const Vec2& t) {
+  const double ratio = interface >= 0 ? s.interfaces[interface].critical_distance_ratio : 0.01;
+  return ratio * block_length_along(s, block_i, t);
+}
+
+// l_c: cohesion and tension act on the halves of the vertex's two edges that lie along
+// the contact (two corners of a block resting on a face share its whole length).
+double bond_length(const BlockSystem& s, int v, const Vec2& t) {
+  const Vec2& p = s.vertices[v];
+  return 0.5 * (std::abs((s.vertices[s.next_vertex(v)] - p).dot(t)) +
+                std::abs((s.vertices[s.previous_vertex(v)] - p).dot(t)));
+}
+
 struct Candidate {
   int edge = -1;
   int block_j = -1;
@@ -125,9 +139,17 @@ std::string find_contacts(const BlockSystem& s, const ContactSearch& search,
     for (const Candidate& c : best) {
       Contact contact;
       const auto old = previous.find(contact_key(v, c.block_j));
+      const Vec2 t = (s.vertices[s.next_vertex(c.edge)] - s.vertices[c.edge]).normalized();
       if (old != previous.end()) {
         contact = contacts[old->second];
-        if (contact.edge != c.edge) contact.reference_ratio = c.ratio;  // vertex moved onto a neighbouring edge
+        if (contact.edge != c.edge) {
+          // The vertex moved onto a neighbouring edge of the same block: it keeps its
+          // accumulated slip (seed 2.2), while the reference point and the lengths that
+          // depend on the edge's direction are taken anew.
+          contact.reference_ratio = c.ratio;
+          contact.critical_distance = critical_distance(s, contact.interface, bi, t);
+          contact.bond_length = bond_length(s, v, t);
+        }
       } else {
         contact.vertex = v;
         contact.block_i = bi;
@@ -140,16 +162,16 @@ std::string find_contacts(const BlockSystem& s, const ContactSearch& search,
         }
         contact.state = c.gap <= 0.0 ? ContactState::Locked : ContactState::Open;
         contact.reference_ratio = c.ratio;
-        const Vec2 t = (s.vertices[s.next_vertex(c.edge)] - s.vertices[c.edge]).normalized();
-        const double ratio = contact.interface >= 0 ? s.interfaces[contact.interface].critical_distance_ratio : 0.01;
-        contact.critical_distance = ratio * block_length_along(s, bi, t);  // seed Eq. 2
-        // Cohesion acts on the parts of the vertex's two edges that lie along the contact.
-        contact.bond_length = 0.5 * (std::abs((s.vertices[s.next_vertex(v)] - p1).dot(t)) +
-                                     std::abs((s.vertices[s.previous_vertex(v)] - p1).dot(t)));
-        contact.bonded = search.first_step && c.gap <= 0.0;
+        contact.critical_distance = critical_distance(s, contact.interface, bi, t);
+        contact.bond_length = bond_length(s, v, t);
+        // A bond only exists where the interface has strength to hold.
+        const bool strong = contact.interface >= 0 && (s.interfaces[contact.interface].cohesion > 0.0 ||
+                                                        s.interfaces[contact.interface].tensile_strength > 0.0);
+        contact.bonded = search.first_step && c.gap <= 0.0 && strong;
       }
       contact.edge = c.edge;
       contact.step_state = contact.state;
+      contact.state_changes = 0;
       found.push_back(contact);
     }
   }

@@ -27,7 +27,7 @@ struct OpenCloseResult {
 // Relative change of the normal force of sliding contacts below which friction is
 // considered settled (friction ~ N, and the slide acceleration is a small difference
 // of gravity and friction, so N must be accurate to much better than 1 %).
-constexpr double kNormalForceTolerance = 1e-4;
+constexpr double kNormalForceTolerance = 1e-3;
 
 OpenCloseResult open_close_iterate(const BlockSystem& system, std::vector<Contact>& contacts,
                                    const StepParameters& step, const SimulationOptions& options,
