@@ -5,6 +5,7 @@
 
 #include "forward/simulation.hpp"
 #include "verify/cases.hpp"
+#include "verify/verification.hpp"
 
 namespace ddafit {
 namespace {
@@ -32,6 +33,18 @@ TEST(Stability, TouchingGroupsWithoutInterfaceAreReportedAtStart) {
   const SimulationResult r = simulate(s);
   EXPECT_EQ(r.summary.status, RunStatus::InvalidScene);
   EXPECT_NE(r.summary.message.find("no interface"), std::string::npos) << r.summary.message;
+}
+
+TEST(Stability, TimeStepWarningMarksTheInaccurateRuns) {
+  // With the default penalty, the runs that miss the incline's analytic curve by more
+  // than 1 % are exactly those that carry the short-time-step warning: the warning is
+  // the user's only sign that a completed run is wrong (docs/verification.md).
+  const auto map = verification::incline_stability_map({50.0}, {1e-4, 2e-4, 5e-4, 1e-3, 2e-3, 5e-3});
+  for (const auto& p : map) {
+    const bool inaccurate = !(p.displacement_error <= 0.01);
+    EXPECT_EQ(p.warned, inaccurate) << "time step " << p.time_step << ": displacement error "
+                                    << p.displacement_error;
+  }
 }
 
 }  // namespace

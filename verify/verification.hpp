@@ -26,4 +26,17 @@ struct Check {
 
 std::vector<Check> all_checks();
 
+// One cell of the incline stability map (docs/verification.md): the seed's incline with
+// i = 5 deg run at a time step and a penalty, against the integrated Eq. 5.
+struct StabilityPoint {
+  double penalty_factor = 0.0;  // penalty = factor x Young's modulus
+  double time_step = 0.0;       // s
+  double omega = 0.0;           // dt sqrt(penalty / block mass)
+  double displacement_error = 0.0;  // max relative, where d >= 1 cm
+  double acceleration_error = 0.0;  // max relative, central differences over 0.01 s
+  bool warned = false;              // the run carried the short-time-step warning
+};
+std::vector<StabilityPoint> incline_stability_map(const std::vector<double>& penalty_factors,
+                                                  const std::vector<double>& time_steps);
+
 }  // namespace ddafit::verification

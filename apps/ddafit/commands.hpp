@@ -14,6 +14,7 @@ int run_simulate(const SimulateArgs& args);
 
 struct VerifyArgs {
   std::string only;  // run only checks whose name contains this
+  bool stability_map = false;  // print the incline stability map instead
 };
 int run_verify(const VerifyArgs& args);
 

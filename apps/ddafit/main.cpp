@@ -21,6 +21,8 @@ int main(int argc, char** argv) {
   VerifyArgs ver;
   CLI::App* verify = app.add_subcommand("verify", "run the built-in analytic verification suite");
   verify->add_option("--only", ver.only, "run only the checks whose name contains this text");
+  verify->add_flag("--stability-map", ver.stability_map,
+                   "run the incline over a grid of time steps and penalties (docs/verification.md)");
 
   try {
     app.parse(argc, argv);
