@@ -299,7 +299,7 @@ TEST(ValidateScene, LargeMeshOfTouchingBlocks) {
   for (int i = 0; i < 100; ++i)
     for (int j = 0; j < 100; ++j) {
       BlockInput b;
-      b.name = "b" + std::to_string(i) + "_" + std::to_string(j);
+      b.name = std::string("b").append(std::to_string(i)).append("_").append(std::to_string(j));
       b.group = b.name;
       b.material = 0;
       b.fixed = j == 0;

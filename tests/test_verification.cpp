@@ -5,10 +5,12 @@
 #include "verify/verification.hpp"
 
 namespace ddafit::verification {
-namespace {
 
-// Printed in test names instead of the bytes of the struct.
+// Printed in test names instead of the bytes of the struct (found by ADL, so it lives
+// in Check's namespace).
 void PrintTo(const Check& check, std::ostream* os) { *os << check.name; }
+
+namespace {
 
 class AnalyticCheck : public ::testing::TestWithParam<Check> {};
 

@@ -80,7 +80,7 @@ Scene stack_scene() {
   s.default_interface = 0;
   s.blocks.push_back(block("ground", box({-2, -1}, {1, 0}, {0, 1}, 5.0, 1.0), true));
   for (int k = 0; k < 5; ++k) {
-    const std::string name = "b" + std::to_string(k + 1);
+    const std::string name = std::string("b").append(std::to_string(k + 1));  // GCC 12 -Wrestrict false positive on "b" + string
     s.blocks.push_back(block(name, box({0, static_cast<double>(k)}, {1, 0}, {0, 1}, 1.0, 1.0), false));
   }
   s.measure.push_back({"top", {0.5, 4.5}});
@@ -117,7 +117,7 @@ Scene brick_wall_scene(int courses, int per_course, double duration) {
     // Odd courses are shifted by half a brick, as in a real wall.
     const double shift = (c % 2) ? 0.5 * w : 0.0;
     for (int k = 0; k < per_course; ++k) {
-      const std::string name = "brick_" + std::to_string(c) + "_" + std::to_string(k);
+      const std::string name = std::string("brick_").append(std::to_string(c)).append("_").append(std::to_string(k));
       s.blocks.push_back(block(name, box({shift + k * w, c * h}, {1, 0}, {0, 1}, w, h), false));
     }
   }
