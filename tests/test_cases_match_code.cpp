@@ -33,19 +33,19 @@ void expect_same_scene(const Scene& file, const Scene& code) {
 const std::string kDir = std::string(DDAFIT_CASES_DIR) + "/verification/";
 
 TEST(CasesMatchCode, InclineConstantFriction) {
-  expect_same_scene(io::read_scene(kDir + "incline_phi25.yaml"), verification::incline_scene({}));
+  EXPECT_NO_FATAL_FAILURE(expect_same_scene(io::read_scene(kDir + "incline_phi25.yaml"), verification::incline_scene({})));
 }
 
 TEST(CasesMatchCode, InclineDegradation) {
   verification::InclineSetup setup;
   setup.roughness_angle = 5.0;
-  expect_same_scene(io::read_scene(kDir + "incline_i5.yaml"), verification::incline_scene(setup));
+  EXPECT_NO_FATAL_FAILURE(expect_same_scene(io::read_scene(kDir + "incline_i5.yaml"), verification::incline_scene(setup)));
 }
 
-TEST(CasesMatchCode, Stack) { expect_same_scene(io::read_scene(kDir + "stack.yaml"), verification::stack_scene()); }
+TEST(CasesMatchCode, Stack) { EXPECT_NO_FATAL_FAILURE(expect_same_scene(io::read_scene(kDir + "stack.yaml"), verification::stack_scene())); }
 
 TEST(CasesMatchCode, Collision) {
-  expect_same_scene(io::read_scene(kDir + "collision.yaml"), verification::collision_scene());
+  EXPECT_NO_FATAL_FAILURE(expect_same_scene(io::read_scene(kDir + "collision.yaml"), verification::collision_scene()));
 }
 
 }  // namespace
