@@ -52,6 +52,33 @@ struct MeasurePoint {
   Vec2 at = Vec2::Zero();  // a material point of the block that contains it at t = 0
 };
 
+// A family of joints. Straight: parallel lines dipping `dip` degrees below the
+// horizontal towards +x (90 = vertical). Parallel: curves at constant normal distance
+// above `parallel_to` (e.g. joints parallel to a basal sliding surface).
+struct JointSet {
+  double dip = 90.0;                // deg, straight families only
+  std::vector<Vec2> parallel_to;    // polyline, ordered by increasing x; empty = straight family
+  double spacing = 0.0;             // m between joints; 0 = spacing_ratio x block_size
+  double spacing_ratio = 1.0;       // multiple of the region's block size
+  double offset = 0.0;              // m, shifts the family along its normal
+};
+
+struct RegionInput {
+  std::string name;
+  std::string group;  // defaults to the name; blocks are named NAME_0001, ...
+  int material = -1;
+  bool fixed = false;
+  std::vector<Vec2> polygon;  // simple, any orientation
+  std::vector<JointSet> joint_sets;
+  double block_size = 0.0;  // m; 0 = MeshSettings::block_size
+};
+
+struct MeshSettings {
+  double block_size = 0.0;       // m: the one knob that scales every joint spacing
+  double min_area_ratio = 0.05;  // blocks smaller than this x block_size^2 are merged
+  double min_angle = 10.0;       // deg: blocks with a sharper corner are merged
+};
+
 struct Scene {
   Vec2 gravity = Vec2(0.0, -9.81);
   double duration = 0.0;  // s, end time
@@ -65,6 +92,13 @@ struct Scene {
   double output_interval = 0.0;  // s between history rows; 0 = every step
   double rest_speed = 0.1;       // m/s; a point slower than this is at rest
   SimulationOptions options;
+
+  // Regions to be cut into blocks (forward/mesh). Meshing appends their blocks after
+  // the first explicit_block_count entries of `blocks`, so a scene can be re-meshed at
+  // another block size.
+  std::vector<RegionInput> regions;
+  MeshSettings mesh;
+  int explicit_block_count = -1;  // -1: not meshed yet, all blocks explicit
 };
 
 // A problem found in a scene: `key` names the scene entry in YAML terms

@@ -34,6 +34,7 @@ struct RunCounters {
   long open_close_iterations = 0;
   long step_cuts = 0;       // steps redone with a shorter time step
   long penalty_raises = 0;  // steps redone with a stiffer penalty
+  long unsettled_contacts = 0;  // contact-steps accepted while still changing state
   double final_penalty = 0.0;
   double smallest_step = 0.0;
   double largest_step = 0.0;

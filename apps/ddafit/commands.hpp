@@ -2,11 +2,17 @@
 #pragma once
 
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace ddafit::app {
 
+// "KEY=VALUE" scene overrides from --set, split into pairs; returns false on a bad one.
+bool parse_overrides(const std::vector<std::string>& sets, std::vector<std::pair<std::string, std::string>>& out);
+
 struct SimulateArgs {
   std::string scene;
+  std::vector<std::string> sets;  // --set KEY=VALUE
   std::string out = "ddafit-out";
   bool quiet = false;
 };

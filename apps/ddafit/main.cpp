@@ -16,6 +16,7 @@ int main(int argc, char** argv) {
   CLI::App* simulate = app.add_subcommand("simulate", "run a scene; writes history.csv and summary.json");
   simulate->add_option("scene", sim.scene, "scene file (YAML); without it, the built-in incline case");
   simulate->add_option("--out", sim.out, "output folder")->capture_default_str();
+  simulate->add_option("--set", sim.sets, "override a scene value, KEY=VALUE (repeatable)");
   simulate->add_flag("--quiet", sim.quiet, "print nothing but errors");
 
   VerifyArgs ver;

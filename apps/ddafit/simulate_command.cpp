@@ -12,6 +12,18 @@
 
 namespace ddafit::app {
 
+bool parse_overrides(const std::vector<std::string>& sets, std::vector<std::pair<std::string, std::string>>& out) {
+  for (const std::string& s : sets) {
+    const auto eq = s.find('=');
+    if (eq == std::string::npos || eq == 0) {
+      std::cerr << "ddafit: --set: expected KEY=VALUE (e.g. mesh.block_size=12.1), got '" << s << "'\n";
+      return false;
+    }
+    out.emplace_back(s.substr(0, eq), s.substr(eq + 1));
+  }
+  return true;
+}
+
 int run_simulate(const SimulateArgs& args) {
   Scene scene;
   std::string label = args.scene;
@@ -22,8 +34,10 @@ int run_simulate(const SimulateArgs& args) {
     scene = verification::incline_scene(setup);
     label = "built-in incline (phi = 25 deg, i = 5 deg)";
   } else {
+    std::vector<std::pair<std::string, std::string>> overrides;
+    if (!parse_overrides(args.sets, overrides)) return kExitBadInput;
     try {
-      scene = io::read_scene(args.scene);
+      scene = io::read_scene(args.scene, overrides);
     } catch (const io::SceneReadError& e) {
       std::cerr << e.what() << "\n";
       return kExitBadInput;

@@ -1,12 +1,16 @@
 // Reads scene files (format: scene_reader.hpp) into a checked Scene. The writer,
 // scene_to_yaml(), is in scene_writer.cpp.
 #include "forward/io/scene_reader.hpp"
+#include "forward/io/region_reader.hpp"
+#include "forward/io/yaml_checks.hpp"
+#include "forward/mesh/region.hpp"
 
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
 #include <cerrno>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <set>
 #include <sstream>
@@ -17,30 +21,16 @@ namespace ddafit::io {
 
 namespace {
 
-std::string join(const std::string& path, const std::string& key) {
-  return path.empty() ? key : path + "." + key;
-}
-
-std::string indexed(const std::string& path, size_t k) {
-  return path + "[" + std::to_string(k) + "]";
-}
-
-template <class T>
-std::string list_names(const std::vector<T>& items) {
-  std::string out;
-  for (const T& item : items) out += (out.empty() ? "" : ", ") + item.name;
-  return out.empty() ? "none" : out;
-}
-
 // Parses one YAML tree into a Scene; every failure throws "FILE: KEY: PROBLEM".
-class Reader {
+class Reader : public YamlChecks {
  public:
-  explicit Reader(std::string file) : file_(std::move(file)) {}
+  Reader(std::string file, std::string base_dir) : YamlChecks(std::move(file)), base_dir_(std::move(base_dir)) {}
 
   Scene read(const YAML::Node& root) const {
     if (!root.IsMap()) fail("(top level)", "expected a map of scene keys (time, materials, ...)");
     check_keys(root, "", {"gravity", "time", "materials", "interfaces", "blocks", "contacts",
-                          "default_interface", "measure", "output", "rest_speed", "control"});
+                          "default_interface", "measure", "output", "rest_speed", "control", "mesh",
+                          "regions"});  // "base" is resolved before reading (load_tree)
     Scene s;
     if (const YAML::Node n = root["gravity"]) s.gravity = vec2(n, "gravity");
     const YAML::Node time = required(root, "", "time", "add time: {duration: ..., step: ...}");
@@ -49,7 +39,14 @@ class Reader {
     s.max_step = req_number(time, "time", "step", "give the time step in s");
     read_materials(required(root, "", "materials", "define at least one material"), s);
     if (const YAML::Node n = root["interfaces"]) read_interfaces(n, s);
-    read_blocks(required(root, "", "blocks", "define at least one block"), s);
+    if (const YAML::Node b = root["blocks"]; b || !root["regions"])
+      read_blocks(required(root, "", "blocks", "define at least one block (or regions)"), s);
+    read_regions(*this, root["mesh"], root["regions"], base_dir_, s);
+    if (!s.regions.empty()) {
+      std::string problem;
+      generate_blocks(s, problem);
+      if (!problem.empty()) fail(problem.substr(0, problem.find(':')), problem.substr(problem.find(':') + 2));
+    }
     if (const YAML::Node n = root["contacts"]) read_contacts(n, s);
     if (const YAML::Node n = root["default_interface"]) {
       s.default_interface =
@@ -73,81 +70,6 @@ class Reader {
   }
 
  private:
-  [[noreturn]] void fail(const std::string& key, const std::string& problem) const {
-    throw SceneReadError(file_ + ": " + key + ": " + problem);
-  }
-
-  // Keys of a map, rejecting repeats, which yaml-cpp would otherwise keep silently.
-  std::vector<std::string> map_keys(const YAML::Node& node, const std::string& path) const {
-    if (!node.IsMap()) fail(path, "expected a map {key: value, ...}");
-    std::vector<std::string> keys;
-    std::set<std::string> seen;
-    for (const auto& kv : node) {
-      if (!kv.first.IsScalar())
-        fail(path.empty() ? "(top level)" : path, "expected plain names as keys");
-      keys.push_back(kv.first.Scalar());
-      if (!seen.insert(keys.back()).second) fail(join(path, keys.back()), "given twice; keep one");
-    }
-    return keys;
-  }
-
-  // Rejects keys outside `allowed`: the usual symptom of a misspelling.
-  void check_keys(const YAML::Node& node, const std::string& path,
-                  const std::vector<std::string>& allowed) const {
-    for (const std::string& key : map_keys(node, path)) {
-      if (std::find(allowed.begin(), allowed.end(), key) != allowed.end()) continue;
-      std::string list;
-      for (const std::string& a : allowed) list += (list.empty() ? "" : ", ") + a;
-      fail(join(path, key), "unknown key; allowed keys: " + list);
-    }
-  }
-
-  YAML::Node required(const YAML::Node& map, const std::string& path, const char* key,
-                      const std::string& hint) const {
-    const YAML::Node n = map[key];
-    if (!n) fail(join(path, key), "missing required key; " + hint);
-    return n;
-  }
-
-  template <class T>
-  T scalar(const YAML::Node& node, const std::string& path, const char* what) const {
-    if (!node.IsScalar()) fail(path, std::string("expected ") + what);
-    try {
-      return node.as<T>();
-    } catch (const YAML::BadConversion&) {
-      fail(path, std::string("expected ") + what + ", got '" + node.Scalar() + "'");
-    }
-  }
-  double number(const YAML::Node& n, const std::string& path) const {
-    return scalar<double>(n, path, "a number");
-  }
-  std::string text(const YAML::Node& n, const std::string& path) const {
-    return scalar<std::string>(n, path, "a name");
-  }
-  Vec2 vec2(const YAML::Node& n, const std::string& path) const {
-    if (!n.IsSequence() || n.size() != 2) fail(path, "expected a pair of numbers [x, y]");
-    return Vec2(number(n[0], indexed(path, 0)), number(n[1], indexed(path, 1)));
-  }
-  double req_number(const YAML::Node& map, const std::string& path, const char* key,
-                    const char* hint) const {
-    return number(required(map, path, key, hint), join(path, key));
-  }
-  void opt_number(const YAML::Node& map, const std::string& path, const char* key,
-                  double& target) const {
-    if (const YAML::Node n = map[key]) target = number(n, join(path, key));
-  }
-  void list(const YAML::Node& n, const std::string& path) const {
-    if (!n.IsSequence()) fail(path, "expected a list [...]");
-  }
-
-  template <class T>
-  int find(const std::vector<T>& items, const std::string& name, const std::string& path,
-           const char* what) const {
-    for (size_t k = 0; k < items.size(); ++k)
-      if (items[k].name == name) return static_cast<int>(k);
-    fail(path, std::string("unknown ") + what + " '" + name + "'; defined: " + list_names(items));
-  }
-
   void read_materials(const YAML::Node& node, Scene& s) const {
     const std::vector<std::string> names = map_keys(node, "materials");
     if (names.empty()) fail("materials", "is empty; define at least one material");
@@ -276,7 +198,7 @@ class Reader {
     }
   }
 
-  std::string file_;
+  std::string base_dir_;  // where relative CSV paths start
 };
 
 std::string yaml_error(const std::string& label, const YAML::Exception& e, const char* what) {
@@ -287,29 +209,87 @@ std::string yaml_error(const std::string& label, const YAML::Exception& e, const
   return label + ": " + where + ": " + what + e.msg;
 }
 
+
 }  // namespace
 
-Scene parse_scene(const std::string& yaml_text, const std::string& file_label) {
+// Deep merge for `base:`: maps merge key by key, anything else replaces.
+void merge_into(YAML::Node target, const YAML::Node& source);
+
+namespace {
+
+// Loads a scene tree, following `base:` (a scene this one inherits and overrides).
+YAML::Node load_tree(const std::string& yaml_text, const std::string& file_label, const std::string& base_dir,
+                     int depth) {
   YAML::Node root;
   try {
     root = YAML::Load(yaml_text);
   } catch (const YAML::Exception& e) {
     throw SceneReadError(yaml_error(file_label, e, "malformed YAML: "));
   }
+  if (!root.IsMap() || !root["base"]) return root;
+  if (depth > 8) throw SceneReadError(file_label + ": base: scenes inherit each other in a loop");
+  if (!root["base"].IsScalar()) throw SceneReadError(file_label + ": base: expected a scene file name");
+  std::filesystem::path base_path(root["base"].Scalar());
+  if (base_path.is_relative() && !base_dir.empty()) base_path = std::filesystem::path(base_dir) / base_path;
+  std::ifstream in(base_path);
+  std::ostringstream text;
+  if (in) text << in.rdbuf();
+  if (!in) throw SceneReadError(file_label + ": base: cannot read '" + base_path.string() + "'");
+  YAML::Node merged = load_tree(text.str(), base_path.string(), base_path.parent_path().string(), depth + 1);
+  root.remove("base");
+  merge_into(merged, root);
+  return merged;
+}
+
+}  // namespace
+
+void merge_into(YAML::Node target, const YAML::Node& source) {
+  for (const auto& entry : source) {
+    const std::string key = entry.first.Scalar();
+    if (entry.second.IsMap() && target[key] && target[key].IsMap())
+      merge_into(target[key], entry.second);
+    else
+      target[key] = YAML::Clone(entry.second);
+  }
+}
+
+Scene parse_scene(const std::string& yaml_text, const std::string& file_label, const std::string& base_dir,
+                  const std::vector<std::pair<std::string, std::string>>& overrides) {
+  YAML::Node root = load_tree(yaml_text, file_label, base_dir, 0);
+  for (const auto& [key, value] : overrides) {
+    // key "a.b.c" sets root[a][b][c]; the value is parsed as YAML ("25", "[1, 2]").
+    if (!root.IsMap()) break;
+    std::vector<std::string> parts;
+    std::stringstream path(key);
+    for (std::string part; std::getline(path, part, '.');) parts.push_back(part);
+    YAML::Node parsed;
+    try {
+      parsed = YAML::Load(value);
+    } catch (const YAML::Exception&) {
+      throw SceneReadError(file_label + ": " + key + ": the value '" + value + "' is not valid YAML");
+    }
+    std::vector<YAML::Node> chain{root};
+    for (size_t k = 0; k + 1 < parts.size(); ++k) {
+      YAML::Node next = chain.back()[parts[k]];
+      if (!next.IsMap()) throw SceneReadError(file_label + ": " + key + ": '" + parts[k] + "' is not a map in the scene");
+      chain.push_back(next);
+    }
+    chain.back()[parts.back()] = parsed;
+  }
   try {
-    return Reader(file_label).read(root);
+    return Reader(file_label, base_dir).read(root);
   } catch (const YAML::Exception& e) {
     // Safety net: the reader checks node types before converting, so this is unexpected.
     throw SceneReadError(yaml_error(file_label, e, ""));
   }
 }
 
-Scene read_scene(const std::string& path) {
+Scene read_scene(const std::string& path, const std::vector<std::pair<std::string, std::string>>& overrides) {
   std::ifstream in(path, std::ios::binary);
   std::ostringstream text;
   if (in) text << in.rdbuf();
   if (!in) throw SceneReadError(path + ": cannot read the file: " + std::strerror(errno));
-  return parse_scene(text.str(), path);
+  return parse_scene(text.str(), path, std::filesystem::path(path).parent_path().string(), overrides);
 }
 
 }  // namespace ddafit::io

@@ -27,7 +27,9 @@
 
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <variant>
+#include <vector>
 
 #include "forward/scene.hpp"
 
@@ -39,11 +41,19 @@ struct SceneReadError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-// Reads and checks a scene file (runs validate_scene()). Throws SceneReadError.
-Scene read_scene(const std::string& path);
+// Key-value overrides applied to the file before it is read: {"interfaces.clay.
+// degradation_percent", "25"} (the CLI's --set, and the inversion's parameters).
+using Overrides = std::vector<std::pair<std::string, std::string>>;
 
-// Same, from text; file_label is used as FILE in error messages.
-Scene parse_scene(const std::string& yaml_text, const std::string& file_label);
+// Reads and checks a scene file (runs validate_scene()). A file may start from another
+// with `base: other.yaml` and override some of its keys (maps merge key by key, other
+// values replace). Throws SceneReadError.
+Scene read_scene(const std::string& path, const Overrides& overrides = {});
+
+// Same, from text; file_label is used as FILE in error messages, base_dir is where
+// relative CSV paths of regions start.
+Scene parse_scene(const std::string& yaml_text, const std::string& file_label, const std::string& base_dir = "",
+                  const Overrides& overrides = {});
 
 // Writes a scene in the same format; parse_scene() gives back the same numbers. Defaults
 // (group = name, fixed: false, zero velocities, unchanged control options) are omitted.

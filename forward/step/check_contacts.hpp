@@ -14,7 +14,7 @@ namespace ddafit {
 
 // A contact that changed state this often within one step keeps its state for the
 // rest of that step's open-close iteration.
-constexpr int kFreezeAfterChanges = 3;
+constexpr int kFreezeAfterChanges = 2;
 
 struct ContactCheck {
   int frozen = 0;                 // contacts held in their state because they cycle

@@ -27,9 +27,16 @@ OpenCloseResult open_close_iterate(const BlockSystem& s, std::vector<Contact>& c
       ScopedTimer timer(profile.check_contacts);
       check = check_contacts(s, contacts, d, step);
     }
-    if (check.changed == 0 &&
-        (check.max_force_change <= kNormalForceTolerance || pass == options.max_open_close_iterations)) {
+    const bool last = pass == options.max_open_close_iterations;
+    const bool settled = check.changed == 0 && check.max_force_change <= kNormalForceTolerance;
+    // On the last pass a few contacts still changing state do not make the step wrong:
+    // their forces differ by the swing of their own gap or slip. Cutting the step for
+    // them instead lowers the contact step number dt sqrt(p/m), which undamps contact
+    // vibration and makes more contacts change (docs/theory.md, open-close iteration).
+    const bool nearly = last && check.changed <= kUnsettledAllowance * static_cast<double>(contacts.size());
+    if (settled || (last && check.changed == 0) || nearly) {
       result.converged = true;
+      result.unsettled = check.changed;
       return result;
     }
     result.unsettled_contact = check.first_changed;

@@ -21,6 +21,7 @@ struct OpenCloseResult {
   bool solver_failed = false;
   int iterations = 0;
   int unsettled_contact = -1;  // a contact still changing state when the iteration gave up
+  int unsettled = 0;           // contacts accepted while still changing on the last pass
   std::string reason;
 };
 
@@ -28,6 +29,9 @@ struct OpenCloseResult {
 // considered settled (friction ~ N, and the slide acceleration is a small difference
 // of gravity and friction, so N must be accurate to much better than 1 %).
 constexpr double kNormalForceTolerance = 1e-3;
+
+// Share of contacts that may still change state on the last pass of an accepted step.
+constexpr double kUnsettledAllowance = 0.005;
 
 OpenCloseResult open_close_iterate(const BlockSystem& system, std::vector<Contact>& contacts,
                                    const StepParameters& step, const SimulationOptions& options,

@@ -1,0 +1,22 @@
+// The `mesh:` and `regions:` keys of a scene file (docs/scene-format.md): regions given
+// as a polygon, as the area between two polylines from CSV files, or as the area below
+// one polyline down to a base elevation, each cut by joint sets (forward/mesh).
+#pragma once
+
+#include <string>
+
+#include "forward/io/yaml_checks.hpp"
+#include "forward/scene.hpp"
+
+namespace ddafit::io {
+
+// Reads `mesh` (may be null) and `regions` into the scene; CSV paths are relative to
+// base_dir. Throws SceneReadError naming the key.
+void read_regions(const YamlChecks& checks, const YAML::Node& mesh, const YAML::Node& regions,
+                  const std::string& base_dir, Scene& scene);
+
+// A polyline from a CSV file of x,y rows (a header line and lines starting with '#'
+// are skipped). Throws SceneReadError naming `key`.
+std::vector<Vec2> read_polyline_csv(const YamlChecks& checks, const std::string& path, const std::string& key);
+
+}  // namespace ddafit::io

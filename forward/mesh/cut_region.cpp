@@ -1,0 +1,263 @@
+// Cutting a region into blocks with an exact 2D arrangement (CGAL): the region outline
+// and every joint trace go in as segments, the bounded faces inside the region come out
+// as blocks. Exact constructions make the tiling exact whatever the joint angles; slivers
+// are then merged into a neighbour by removing the edge they share.
+#include <CGAL/Arr_extended_dcel.h>
+#include <CGAL/Arr_segment_traits_2.h>
+#include <CGAL/Arrangement_2.h>
+#include <CGAL/Exact_predicates_exact_constructions_kernel.h>
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+
+#include "forward/geometry.hpp"
+#include "forward/mesh/region.hpp"
+
+namespace ddafit {
+namespace {
+
+using Kernel = CGAL::Exact_predicates_exact_constructions_kernel;
+using Traits = CGAL::Arr_segment_traits_2<Kernel>;
+using Point = Kernel::Point_2;
+using Segment = Traits::Curve_2;
+// Face data: 1 for a face inside the region (a block), 0 outside.
+using Dcel = CGAL::Arr_face_extended_dcel<Traits, int>;
+using Arrangement = CGAL::Arrangement_2<Traits, Dcel>;
+
+// A merged block may not exceed this multiple of block_size^2.
+constexpr double kMaxMergedAreaRatio = 4.0;
+
+// More blocks than this from one region is a spacing mistake, not a model.
+constexpr double kMaxBlocksPerRegion = 2.0e5;
+
+Vec2 to_vec(const Point& p) { return Vec2(CGAL::to_double(p.x()), CGAL::to_double(p.y())); }
+
+// Liang-Barsky clip of segment a-b to the box [lo, hi].
+std::optional<std::pair<Vec2, Vec2>> clip(const Vec2& a, const Vec2& b, const Vec2& lo, const Vec2& hi) {
+  double t0 = 0.0, t1 = 1.0;
+  const Vec2 d = b - a;
+  const double p[4] = {-d.x(), d.x(), -d.y(), d.y()};
+  const double q[4] = {a.x() - lo.x(), hi.x() - a.x(), a.y() - lo.y(), hi.y() - a.y()};
+  for (int k = 0; k < 4; ++k) {
+    if (p[k] == 0.0) {
+      if (q[k] < 0.0) return std::nullopt;
+    } else {
+      const double t = q[k] / p[k];
+      if (p[k] < 0.0)
+        t0 = std::max(t0, t);
+      else
+        t1 = std::min(t1, t);
+    }
+  }
+  if (t0 >= t1) return std::nullopt;
+  return std::make_pair(a + t0 * d, a + t1 * d);
+}
+
+std::vector<Vec2> face_polygon(Arrangement::Face_const_handle f) {
+  std::vector<Vec2> poly;
+  auto he = f->outer_ccb();
+  const auto start = he;
+  do {
+    poly.push_back(to_vec(he->source()->point()));
+  } while (++he != start);
+  return poly;
+}
+
+// A point strictly inside a simple polygon: the centroid if it is inside, else the
+// centroid of the first ear-like triple of vertices that is.
+Vec2 interior_point(const std::vector<Vec2>& poly) {
+  const PolygonMoments m = polygon_moments(poly);
+  if (point_in_polygon(m.centroid, poly)) return m.centroid;
+  const size_t n = poly.size();
+  for (size_t k = 0; k < n; ++k) {
+    const Vec2 c = (poly[k] + poly[(k + 1) % n] + poly[(k + 2) % n]) / 3.0;
+    if (point_in_polygon(c, poly)) return c;
+  }
+  return m.centroid;
+}
+
+double smallest_angle(const std::vector<Vec2>& poly, const std::vector<Vec2>& region_corners) {
+  double smallest = 180.0;
+  const size_t n = poly.size();
+  for (size_t k = 0; k < n; ++k) {
+    const Vec2& p = poly[k];
+    const bool region_corner = std::any_of(region_corners.begin(), region_corners.end(),
+                                           [&](const Vec2& c) { return (c - p).squaredNorm() < 1e-18; });
+    if (region_corner) continue;  // merging cannot change the region's own corners
+    const Vec2 a = (poly[(k + n - 1) % n] - p).normalized(), b = (poly[(k + 1) % n] - p).normalized();
+    double angle = std::acos(std::clamp(a.dot(b), -1.0, 1.0)) * 180.0 / M_PI;
+    if (cross(poly[(k + n - 1) % n], p, poly[(k + 1) % n]) < 0.0) angle = 360.0 - angle;  // reflex corner
+    smallest = std::min(smallest, angle);
+  }
+  return smallest;
+}
+
+// Removes vertex v if it now joins two collinear edges, so blocks carry no vertex that
+// only a deleted joint needed.
+void merge_if_collinear(Arrangement& arr, Arrangement::Vertex_handle v) {
+  if (v->degree() != 2) return;
+  auto e1 = v->incident_halfedges();
+  auto e2 = std::next(e1);
+  const Point p = e1->source()->point(), q = e2->source()->point();
+  if (!CGAL::collinear(p, v->point(), q)) return;
+  arr.merge_edge(e1, e2->twin(), Segment(p, q));
+}
+
+// Vertices on the outer boundaries of both faces. Merging across one edge keeps a
+// simple block only when the faces share just that edge's two end points; more means a
+// second contact that would pinch the merged block or wrap it round a hole.
+int shared_vertices(Arrangement::Face_const_handle f, Arrangement::Face_const_handle g) {
+  std::vector<Arrangement::Vertex_const_handle> mine;
+  auto he = f->outer_ccb();
+  const auto start = he;
+  do mine.push_back(he->source());
+  while (++he != start);
+  int shared = 0;
+  auto other = g->outer_ccb();
+  const auto other_start = other;
+  do shared += std::count(mine.begin(), mine.end(), other->source()) > 0;
+  while (++other != other_start);
+  return shared;
+}
+
+// A sliver that shared two edges with its neighbour leaves, once merged across one,
+// the other edge with the same face on both sides: a spike into the block. Remove such
+// edges (and the vertices they leave alone) until none is left.
+void remove_dangling_edges(Arrangement& arr) {
+  for (bool again = true; again;) {
+    again = false;
+    for (auto e = arr.edges_begin(); e != arr.edges_end(); ++e) {
+      if (e->face() != e->twin()->face() || e->face()->data() != 1) continue;
+      auto source = e->source(), target = e->target();
+      const bool source_alone = source->degree() == 1, target_alone = target->degree() == 1;
+      arr.remove_edge(e, source_alone, target_alone);
+      if (!source_alone) merge_if_collinear(arr, source);
+      if (!target_alone) merge_if_collinear(arr, target);
+      again = true;
+      break;  // iterators are invalid after a removal
+    }
+  }
+}
+
+}  // namespace
+
+std::vector<std::vector<Vec2>> cut_region(const RegionInput& region, const MeshSettings& settings,
+                                          MeshStats& stats, std::string& problem) {
+  std::vector<Vec2> outline = region.polygon;
+  if (signed_area(outline) < 0.0) std::reverse(outline.begin(), outline.end());
+  const double region_area = signed_area(outline);
+  const double block_size = region.block_size > 0.0 ? region.block_size : settings.block_size;
+  Vec2 lo = outline[0], hi = outline[0];
+  for (const Vec2& p : outline) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  const Vec2 margin = 0.01 * (hi - lo) + Vec2::Constant(1e-6);
+  lo -= margin;
+  hi += margin;
+
+  std::vector<Segment> segments;
+  for (size_t k = 0; k < outline.size(); ++k) {
+    const Vec2& a = outline[k];
+    const Vec2& b = outline[(k + 1) % outline.size()];
+    segments.emplace_back(Point(a.x(), a.y()), Point(b.x(), b.y()));
+  }
+  double densest = 0.0;  // joints per metre, summed over sets, for the size guard
+  for (const JointSet& set : region.joint_sets) {
+    const double spacing = set.spacing > 0.0 ? set.spacing : set.spacing_ratio * block_size;
+    densest += 1.0 / spacing;
+  }
+  if (densest * densest * region_area > kMaxBlocksPerRegion) {
+    problem = "joint spacings would cut the region into about " +
+              std::to_string(static_cast<long>(densest * densest * region_area)) +
+              " blocks; raise the spacings or block_size";
+    return {};
+  }
+  for (const JointSet& set : region.joint_sets)
+    for (const auto& [a, b] : joint_traces(set, block_size, lo, hi))
+      if (auto piece = clip(a, b, lo, hi))
+        segments.emplace_back(Point(piece->first.x(), piece->first.y()),
+                              Point(piece->second.x(), piece->second.y()));
+
+  Arrangement arr;
+  CGAL::insert(arr, segments.begin(), segments.end());
+
+  for (auto f = arr.faces_begin(); f != arr.faces_end(); ++f) {
+    f->set_data(0);
+    if (f->is_unbounded()) continue;
+    if (point_in_polygon(interior_point(face_polygon(f)), outline)) f->set_data(1);
+  }
+
+  // Merge slivers into the inside neighbour across their longest shared edge, round by
+  // round until none is left (a merge can leave a new, larger sliver next door).
+  const double min_area = settings.min_area_ratio * block_size * block_size;
+  for (int round = 0; round < 50; ++round) {
+    std::vector<Arrangement::Halfedge_handle> to_remove;
+    std::vector<Arrangement::Face_handle> touched;
+    for (auto f = arr.faces_begin(); f != arr.faces_end(); ++f) {
+      if (f->is_unbounded() || f->data() != 1) continue;
+      if (std::find(touched.begin(), touched.end(), f) != touched.end()) continue;
+      const std::vector<Vec2> poly = face_polygon(f);
+      if (signed_area(poly) >= min_area && smallest_angle(poly, outline) >= settings.min_angle) continue;
+      // The neighbour: across an edge of at least a quarter of the sliver's longest
+      // edge (so the merge removes the thin direction), the smallest such neighbour (so
+      // merges do not snowball into one giant block), within the size cap.
+      const double own_area = signed_area(poly);
+      double longest = 0.0;
+      auto he = f->outer_ccb();
+      const auto start = he;
+      do longest = std::max(longest, (to_vec(he->target()->point()) - to_vec(he->source()->point())).norm());
+      while (++he != start);
+      Arrangement::Halfedge_handle best;
+      double best_area = 1e300;
+      do {
+        auto other = he->twin()->face();
+        const double length = (to_vec(he->target()->point()) - to_vec(he->source()->point())).norm();
+        if (other->is_unbounded() || other->data() != 1 || other == f || length < 0.25 * longest) continue;
+        if (std::find(touched.begin(), touched.end(), other) != touched.end()) continue;
+        const double other_area = signed_area(face_polygon(other));
+        if (own_area + other_area > kMaxMergedAreaRatio * block_size * block_size) continue;
+        if (other_area < best_area && shared_vertices(f, other) == 2) {
+          best_area = other_area;
+          best = he;
+        }
+      } while (++he != start);
+      if (best_area == 1e300) continue;
+      touched.push_back(f);
+      touched.push_back(best->twin()->face());
+      to_remove.push_back(best);
+    }
+    if (to_remove.empty()) break;
+    for (auto he : to_remove) {
+      auto source = he->source(), target = he->target();
+      arr.remove_edge(he, false, false);
+      merge_if_collinear(arr, source);
+      merge_if_collinear(arr, target);
+      ++stats.merged_slivers;
+    }
+    remove_dangling_edges(arr);
+  }
+
+  std::vector<std::vector<Vec2>> blocks;
+  double total = 0.0;
+  stats.remaining_slivers = 0;
+  stats.smallest_area = 1e300;
+  stats.smallest_angle = 180.0;
+  for (auto f = arr.faces_begin(); f != arr.faces_end(); ++f) {
+    if (f->is_unbounded() || f->data() != 1) continue;
+    std::vector<Vec2> poly = face_polygon(f);
+    const double area = signed_area(poly);
+    total += area;
+    stats.smallest_area = std::min(stats.smallest_area, area);
+    const double angle = smallest_angle(poly, outline);
+    stats.smallest_angle = std::min(stats.smallest_angle, angle);
+    if (area < min_area || angle < settings.min_angle) ++stats.remaining_slivers;
+    blocks.push_back(std::move(poly));
+  }
+  stats.block_count += static_cast<int>(blocks.size());
+  stats.area_error = std::max(stats.area_error, std::abs(total - region_area) / region_area);
+  return blocks;
+}
+
+}  // namespace ddafit

@@ -1,0 +1,42 @@
+// Regions cut into blocks by joint sets (Shi's "DC" step). The region and joint-set
+// structs are part of the scene (forward/scene.hpp); the cutting is in cut_region.cpp.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "forward/scene.hpp"
+
+namespace ddafit {
+
+struct MeshStats {
+  int block_count = 0;
+  double mean_block_size = 0.0;  // sqrt(mean area), the seed's measure
+  double smallest_area = 0.0;
+  double smallest_angle = 0.0;   // deg, over all block corners that are not region corners
+  int merged_slivers = 0;
+  int remaining_slivers = 0;     // slivers no neighbour could take (reported, not hidden)
+  double area_error = 0.0;       // |sum of block areas - region area| / region area
+};
+
+struct RegionMesh {
+  std::string region;
+  MeshStats stats;
+};
+
+// Replaces the generated blocks of `scene` (those after scene.explicit_block_count)
+// with the blocks of its regions, cut at scene.mesh.block_size. Returns one entry per
+// region, or sets `problem` ("regions[K]: ...") and leaves the scene unchanged.
+std::vector<RegionMesh> generate_blocks(Scene& scene, std::string& problem);
+
+// The joint traces of one set across a region's bounding box, as segments.
+std::vector<std::pair<Vec2, Vec2>> joint_traces(const JointSet& set, double block_size, const Vec2& lo,
+                                                const Vec2& hi);
+
+// Cuts one region by its joint sets. Returns the blocks as counter-clockwise polygons
+// that tile the region; `problem` is set (and nothing returned) when the input cannot
+// be cut (e.g. a spacing so small the region would become millions of blocks).
+std::vector<std::vector<Vec2>> cut_region(const RegionInput& region, const MeshSettings& settings,
+                                          MeshStats& stats, std::string& problem);
+
+}  // namespace ddafit
