@@ -7,10 +7,13 @@ packages=(
   cmake make g++                 # toolchain
   libeigen3-dev                  # small dense algebra (6x6 blocks)
   libsuitesparse-dev             # CHOLMOD sparse Cholesky
+  libopenblas0-pthread           # BLAS for CHOLMOD's supernodal factorisation (3.7x the reference BLAS)
+  libcgal-dev libgmp-dev libmpfr-dev   # exact 2D arrangements for the block generator
   libyaml-cpp-dev                # scene files
   libcli11-dev libfmt-dev nlohmann-json3-dev   # command line, formatting, summary.json
   libgtest-dev libgmock-dev      # tests
   libbenchmark-dev               # bench/
+  gnuplot-nox                    # PNG charts (ddafit mesh, simulate --plots)
 )
 if [ "$(id -u)" -ne 0 ]; then sudo=sudo; else sudo=; fi
 $sudo apt-get update -qq

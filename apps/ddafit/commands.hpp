@@ -5,6 +5,8 @@
 #include <utility>
 #include <vector>
 
+#include "forward/analysis/stable_friction.hpp"
+
 namespace ddafit::app {
 
 // "KEY=VALUE" scene overrides from --set, split into pairs; returns false on a bad one.
@@ -15,8 +17,26 @@ struct SimulateArgs {
   std::vector<std::string> sets;  // --set KEY=VALUE
   std::string out = "ddafit-out";
   bool quiet = false;
+  double vtk_interval = 0.0;  // s between VTK snapshots; 0 = none
+  bool plots = false;         // PNG charts of the history
 };
 int run_simulate(const SimulateArgs& args);
+
+struct MeshArgs {
+  std::string scene;
+  std::string out = "ddafit-mesh";
+  std::vector<std::string> sets;
+};
+int run_mesh(const MeshArgs& args);
+
+struct StableArgs {
+  std::string scene;
+  std::string interface;
+  std::string out = "ddafit-stable";
+  std::vector<std::string> sets;
+  StableSearchOptions options;
+};
+int run_stable(const StableArgs& args);
 
 struct VerifyArgs {
   std::string only;  // run only checks whose name contains this

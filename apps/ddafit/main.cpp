@@ -18,6 +18,28 @@ int main(int argc, char** argv) {
   simulate->add_option("--out", sim.out, "output folder")->capture_default_str();
   simulate->add_option("--set", sim.sets, "override a scene value, KEY=VALUE (repeatable)");
   simulate->add_flag("--quiet", sim.quiet, "print nothing but errors");
+  simulate->add_option("--vtk-interval", sim.vtk_interval, "write DIR/vtk/blocks_NNNNN.vtk every this many s")
+      ->check(CLI::NonNegativeNumber);
+  simulate->add_flag("--plots", sim.plots, "draw distance/velocity charts (PNG, needs gnuplot)");
+
+  MeshArgs mesh;
+  CLI::App* mesh_cmd = app.add_subcommand("mesh", "cut a scene's regions into blocks; writes scene.yaml, VTK, PNG");
+  mesh_cmd->add_option("scene", mesh.scene, "scene file (YAML) with regions")->required();
+  mesh_cmd->add_option("--out", mesh.out, "output folder")->capture_default_str();
+  mesh_cmd->add_option("--set", mesh.sets, "override a scene value, KEY=VALUE (repeatable)");
+
+  StableArgs st;
+  CLI::App* stable = app.add_subcommand("stable", "bisect an interface's friction angle for the stable state");
+  stable->add_option("scene", st.scene, "scene file (YAML)")->required();
+  stable->add_option("--interface", st.interface, "interface whose friction angle is searched")->required();
+  stable->add_option("--low", st.options.low, "deg, a value that slides")->capture_default_str();
+  stable->add_option("--high", st.options.high, "deg, a value that holds")->capture_default_str();
+  stable->add_option("--tolerance", st.options.tolerance, "deg, width of the final bracket")->capture_default_str();
+  stable->add_option("--time", st.options.trial_duration, "s simulated per trial")->capture_default_str();
+  stable->add_option("--movement", st.options.max_movement, "m a point may move and still count as stable")
+      ->capture_default_str();
+  stable->add_option("--out", st.out, "output folder for stable.json")->capture_default_str();
+  stable->add_option("--set", st.sets, "override a scene value, KEY=VALUE (repeatable)");
 
   VerifyArgs ver;
   CLI::App* verify = app.add_subcommand("verify", "run the built-in analytic verification suite");
@@ -37,5 +59,7 @@ int main(int argc, char** argv) {
   }
   if (*simulate) return run_simulate(sim);
   if (*verify) return run_verify(ver);
+  if (*mesh_cmd) return run_mesh(mesh);
+  if (*stable) return run_stable(st);
   return kExitBadInput;
 }

@@ -6,6 +6,8 @@
 #include "apps/ddafit/commands.hpp"
 #include "apps/ddafit/exit_codes.hpp"
 #include "apps/ddafit/output_files.hpp"
+#include "apps/ddafit/plots.hpp"
+#include "apps/ddafit/vtk_writer.hpp"
 #include "forward/io/scene_reader.hpp"
 #include "forward/simulation.hpp"
 #include "verify/cases.hpp"
@@ -51,6 +53,20 @@ int run_simulate(const SimulateArgs& args) {
   }
 
   SimulationHooks hooks;
+  std::string vtk_problem;
+  if (args.vtk_interval > 0.0) {
+    const std::filesystem::path vtk_dir = std::filesystem::path(args.out) / "vtk";
+    std::filesystem::create_directories(vtk_dir, ec);
+    hooks.on_output = [&, vtk_dir, next = 0.0, count = 0](double t, const BlockSystem& system) mutable {
+      if (t + 1e-9 < next || !vtk_problem.empty()) return;
+      try {
+        write_state_vtk((vtk_dir / fmt::format("blocks_{:05d}.vtk", count++)).string(), system, t);
+      } catch (const std::exception& e) {
+        vtk_problem = e.what();
+      }
+      next += args.vtk_interval;
+    };
+  }
   if (!args.quiet) {
     hooks.on_progress = [](double t, double duration) {
       std::cerr << fmt::format("\r  t = {:.3f} / {:.3f} s ({:.0f} %)", t, duration, 100.0 * t / duration)
@@ -79,6 +95,11 @@ int run_simulate(const SimulateArgs& args) {
   if (s.status == RunStatus::Failed) {
     std::cerr << label << ": simulation failed: " << s.message << "\n";
     return kExitRunFailed;
+  }
+  if (!vtk_problem.empty()) std::cerr << args.out << ": VTK snapshots stopped: " << vtk_problem << "\n";
+  if (args.plots) {
+    std::string reason;
+    if (!plot_history(args.out, scene, reason)) std::cerr << "note: charts not drawn: " << reason << "\n";
   }
   if (!args.quiet) {
     std::cout << fmt::format("{} steps, {} open-close iterations, {} step cuts, {} penalty raises, {:.2f} s wall\n",

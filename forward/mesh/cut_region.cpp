@@ -93,6 +93,16 @@ double smallest_angle(const std::vector<Vec2>& poly, const std::vector<Vec2>& re
   return smallest;
 }
 
+// Distinct exact points can round to doubles a few ulps apart (three joints nearly
+// concurrent): drop a vertex that close to the previous one.
+std::vector<Vec2> without_near_repeats(const std::vector<Vec2>& poly, double eps) {
+  std::vector<Vec2> out;
+  for (const Vec2& p : poly)
+    if (out.empty() || (p - out.back()).norm() > eps) out.push_back(p);
+  while (out.size() > 3 && (out.front() - out.back()).norm() <= eps) out.pop_back();
+  return out;
+}
+
 // Removes vertex v if it now joins two collinear edges, so blocks carry no vertex that
 // only a deleted joint needed.
 void merge_if_collinear(Arrangement& arr, Arrangement::Vertex_handle v) {
@@ -119,6 +129,24 @@ int shared_vertices(Arrangement::Face_const_handle f, Arrangement::Face_const_ha
   do shared += std::count(mine.begin(), mine.end(), other->source()) > 0;
   while (++other != other_start);
   return shared;
+}
+
+// Whether f can merge with its neighbour g: the edges they share must form one
+// contiguous chain, and they may touch nowhere else (else the merged block would pinch
+// or wrap round a hole). The chain's other edges are left dangling by the merge and
+// removed by remove_dangling_edges().
+bool mergeable(Arrangement::Face_const_handle f, Arrangement::Face_const_handle g) {
+  std::vector<bool> shared;
+  auto he = f->outer_ccb();
+  const auto start = he;
+  do shared.push_back(he->twin()->face() == g);
+  while (++he != start);
+  int runs = 0, edges = 0;
+  for (size_t k = 0; k < shared.size(); ++k) {
+    edges += shared[k];
+    runs += shared[k] && !shared[(k + shared.size() - 1) % shared.size()];
+  }
+  return runs == 1 && shared_vertices(f, g) == edges + 1;
 }
 
 // A sliver that shared two edges with its neighbour leaves, once merged across one,
@@ -209,20 +237,25 @@ std::vector<std::vector<Vec2>> cut_region(const RegionInput& region, const MeshS
       const auto start = he;
       do longest = std::max(longest, (to_vec(he->target()->point()) - to_vec(he->source()->point())).norm());
       while (++he != start);
+      // Second tier, when no neighbour passes: any edge, no size cap; a sliver left
+      // alone is worse than a large block.
       Arrangement::Halfedge_handle best;
       double best_area = 1e300;
-      do {
-        auto other = he->twin()->face();
-        const double length = (to_vec(he->target()->point()) - to_vec(he->source()->point())).norm();
-        if (other->is_unbounded() || other->data() != 1 || other == f || length < 0.25 * longest) continue;
-        if (std::find(touched.begin(), touched.end(), other) != touched.end()) continue;
-        const double other_area = signed_area(face_polygon(other));
-        if (own_area + other_area > kMaxMergedAreaRatio * block_size * block_size) continue;
-        if (other_area < best_area && shared_vertices(f, other) == 2) {
-          best_area = other_area;
-          best = he;
-        }
-      } while (++he != start);
+      for (int tier = 0; tier < 2 && best_area == 1e300; ++tier) {
+        do {
+          auto other = he->twin()->face();
+          const double length = (to_vec(he->target()->point()) - to_vec(he->source()->point())).norm();
+          if (other->is_unbounded() || other->data() != 1 || other == f) continue;
+          if (tier == 0 && length < 0.25 * longest) continue;
+          if (std::find(touched.begin(), touched.end(), other) != touched.end()) continue;
+          const double other_area = signed_area(face_polygon(other));
+          if (tier == 0 && own_area + other_area > kMaxMergedAreaRatio * block_size * block_size) continue;
+          if (other_area < best_area && mergeable(f, other)) {
+            best_area = other_area;
+            best = he;
+          }
+        } while (++he != start);
+      }
       if (best_area == 1e300) continue;
       touched.push_back(f);
       touched.push_back(best->twin()->face());
@@ -246,7 +279,7 @@ std::vector<std::vector<Vec2>> cut_region(const RegionInput& region, const MeshS
   stats.smallest_angle = 180.0;
   for (auto f = arr.faces_begin(); f != arr.faces_end(); ++f) {
     if (f->is_unbounded() || f->data() != 1) continue;
-    std::vector<Vec2> poly = face_polygon(f);
+    std::vector<Vec2> poly = without_near_repeats(face_polygon(f), 1e-9 * block_size);
     const double area = signed_area(poly);
     total += area;
     stats.smallest_area = std::min(stats.smallest_area, area);

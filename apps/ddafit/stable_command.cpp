@@ -1,0 +1,61 @@
+#include <fmt/format.h>
+
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <nlohmann/json.hpp>
+
+#include "apps/ddafit/commands.hpp"
+#include "apps/ddafit/exit_codes.hpp"
+#include "forward/analysis/stable_friction.hpp"
+#include "forward/io/scene_reader.hpp"
+
+namespace ddafit::app {
+
+int run_stable(const StableArgs& args) {
+  std::vector<std::pair<std::string, std::string>> overrides;
+  if (!parse_overrides(args.sets, overrides)) return kExitBadInput;
+  Scene scene;
+  try {
+    scene = io::read_scene(args.scene, overrides);
+  } catch (const io::SceneReadError& e) {
+    std::cerr << e.what() << "\n";
+    return kExitBadInput;
+  }
+  StableSearchOptions o = args.options;
+  for (size_t k = 0; k < scene.interfaces.size(); ++k)
+    if (scene.interfaces[k].name == args.interface) o.interface = static_cast<int>(k);
+  if (o.interface < 0) {
+    std::cerr << args.scene << ": --interface: no interface '" << args.interface << "' in the scene\n";
+    return kExitBadInput;
+  }
+  if (!(o.low < o.high) || !(o.tolerance > 0.0) || !(o.trial_duration > 0.0) || !(o.max_movement > 0.0)) {
+    std::cerr << "ddafit stable: need --low < --high and positive --tolerance, --time and --movement\n";
+    return kExitBadInput;
+  }
+  std::cout << fmt::format("{:>10} {:>14} {:>8}\n", "phi (deg)", "movement (m)", "stable");
+  const StableSearchResult r = find_stable_friction(scene, o, [](const StableTrial& t) {
+    std::cout << fmt::format("{:>10.3f} {:>14.4f} {:>8}{}\n", t.friction_angle, t.movement, t.stable ? "yes" : "no",
+                             t.failure.empty() ? "" : "  (run failed: " + t.failure + ")")
+              << std::flush;
+  });
+  nlohmann::ordered_json j;
+  j["scene"] = args.scene;
+  j["interface"] = args.interface;
+  j["bracketed"] = r.bracketed;
+  j["low"] = r.low;
+  j["high"] = r.high;
+  for (const StableTrial& t : r.trials)
+    j["trials"].push_back({{"friction_angle", t.friction_angle}, {"movement", t.movement}, {"stable", t.stable}});
+  std::filesystem::create_directories(args.out);
+  std::ofstream(std::filesystem::path(args.out) / "stable.json") << j.dump(2) << "\n";
+  if (!r.bracketed) {
+    std::cerr << args.scene << ": stable search: " << r.message << "\n";
+    return kExitRunFailed;
+  }
+  std::cout << fmt::format("stable for {} friction angle between {:.3f} and {:.3f} deg\n", args.interface, r.low,
+                           r.high);
+  return kExitSuccess;
+}
+
+}  // namespace ddafit::app
