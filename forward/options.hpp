@@ -43,9 +43,10 @@ struct SimulationOptions {
   // Contact search distance as a multiple of the largest displacement allowed per step.
   double search_distance_factor = 2.5;
 
-  // Static passes that pre-load the contacts touching at t = 0 (forward/step/
-  // settle_contacts.hpp); 0 starts the dynamics with unloaded springs.
-  int settle_passes = 3;
+  // Largest number of static passes that pre-load the contacts touching at t = 0
+  // (forward/step/settle_contacts.hpp; they stop when converged); 0 starts the
+  // dynamics with unloaded springs.
+  int settle_passes = 40;
 
   // Plane strain (default, long slopes) or plane stress elasticity.
   bool plane_strain = true;

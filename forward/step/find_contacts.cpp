@@ -126,6 +126,17 @@ std::string find_contacts(const BlockSystem& s, const ContactSearch& search,
       const double ratio = (p1 - p2).dot(t) / l;
       const double extension = std::min(rho, 0.25 * l) / l;  // catches vertex-vertex approach
       if (ratio < -extension || ratio > 1.0 + extension) continue;
+      // Beyond an end of the edge (the vertex-vertex zone) the vertex only touches this
+      // edge if it is also inside the neighbouring edge at that end; otherwise it lies
+      // beside the block, and the extended line would report a false penetration (a
+      // corner sliding past a corner read 0.4 m "deep" and wrecked the Vajont run).
+      if (ratio < 0.0 || ratio > 1.0) {
+        const int corner = ratio > 1.0 ? s.next_vertex(e) : e;
+        const int a = ratio > 1.0 ? corner : s.previous_vertex(corner);
+        const Vec2 da = s.vertices[s.next_vertex(a)] - s.vertices[a];
+        const Vec2 neighbour_out = Vec2(da.y(), -da.x()).normalized();
+        if ((p1 - s.vertices[corner]).dot(neighbour_out) > 0.0) continue;
+      }
       if (wedge_a.dot(outward) < -kWedgeTolerance || wedge_b.dot(outward) < -kWedgeTolerance) continue;
       // One contact per (vertex, block): keep the edge with the least penetration,
       // which is the edge the vertex entered through (Shi's entrance rule, simplified).

@@ -36,6 +36,7 @@ bool settle_contacts(BlockSystem& s, std::vector<Contact>& contacts, const StepP
         largest = std::max(largest, exact_point_displacement(s.vertices[v], block.centroid, db).norm());
     }
     if (largest > max_shift) break;
+    const bool converged = largest <= kSettleTolerance * max_shift;
     for (size_t b = 0; b < s.blocks.size(); ++b) {
       Block& block = s.blocks[b];
       if (block.unknown < 0 || !touching[b]) continue;
@@ -51,6 +52,7 @@ bool settle_contacts(BlockSystem& s, std::vector<Contact>& contacts, const StepP
       block.stress += s.elastic[block.material] * db.segment<3>(3);
       refresh_block_geometry(s, static_cast<int>(b));
     }
+    if (converged) break;
   }
   for (size_t b = 0; b < s.blocks.size(); ++b) s.blocks[b].velocity = velocities[b];
   // The contacts now carry the static load; their springs start from here.
