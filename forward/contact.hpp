@@ -38,6 +38,7 @@ struct Contact {
   int state_changes = 0;
 
   // Last iterate's kinematics, used to classify and to accept the step.
+  double start_gap = 0.0;    // d_n at the start of the step (m)
   double normal_gap = 0.0;   // d_n at the end of the step (m, < 0 = penetration)
   double step_slip = 0.0;    // relative tangential motion of P1 over the step (m)
   double shear_offset = 0.0; // d_s: offset of P1 from P0 along t at the end of the step (m);

@@ -11,6 +11,7 @@
 
 #include "forward/sparse_system.hpp"
 #include "forward/step/control_time_step.hpp"
+#include "forward/step/energy_check.hpp"
 #include "forward/step/find_contacts.hpp"
 #include "forward/step/open_close_iterate.hpp"
 #include "forward/step/settle_contacts.hpp"
@@ -168,6 +169,8 @@ SimulationResult simulate(const Scene& scene, const SimulationHooks& hooks) {
   if (hooks.on_output) hooks.on_output(time, system);
   auto last_progress = wall_start;
 
+  const EnergyAudit audit = start_energy_audit(system, scene.gravity);
+
   auto fail = [&](RunStatus status, const std::string& why) {
     std::ostringstream out;
     out << "t = " << time << " s, step " << run.steps + 1 << ": " << why;
@@ -256,6 +259,11 @@ SimulationResult simulate(const Scene& scene, const SimulationHooks& hooks) {
     run.largest_step = std::max(run.largest_step, attempt);
     grow_step(control, options);
     record_points(system, time, scene.rest_speed, summary.points);
+    if (const std::string problem = check_energy(audit, system, scene.gravity); !problem.empty()) {
+      record_history(system, time, result.history);
+      fail(RunStatus::Failed, problem);
+      break;
+    }
 
     const bool at_end = time >= scene.duration - end_slack;
     const bool at_output = scene.output_interval <= 0.0 || time >= next_output - end_slack;

@@ -39,7 +39,9 @@ TEST(Vajont, CoarseSectionSlidesDownslopeOnAFixedBase) {
     EXPECT_GT(last.displacement.x(), 0.05) << "point " << name;  // towards the valley
     // Down where the base is steep (points 1-4); point 5 and the vertical profile stand
     // on or above the 1-13 deg seat and may be pushed up over it.
-    if (name == "1" || name == "2" || name == "3" || name == "4") EXPECT_LT(last.displacement.y(), 0.0) << name;
+    if (name == "1" || name == "2" || name == "3" || name == "4") {
+      EXPECT_LT(last.displacement.y(), 0.0) << name;
+    }
   }
   // The bedrock is fixed: not a vertex may move (exact, no tolerance needed). Compared
   // as sets, since the engine orders every polygon counter-clockwise.

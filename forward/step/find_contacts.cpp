@@ -76,7 +76,18 @@ struct Candidate {
   int block_j = -1;
   double gap = 0.0;
   double ratio = 0.0;
+  bool kept = false;  // the edge this vertex touched in the previous step, still under it
 };
+
+// Which of two edges of one block a vertex touches. Shi's entrance rule asks for the
+// edge it entered through; the edge it touched in the previous step, while the approach
+// was still unambiguous, is that edge for as long as the vertex projects onto it. Only
+// new contacts fall back on the least penetration, which misreads a corner that has gone
+// deep near a corner of the other block.
+bool better(const Candidate& a, const Candidate& b) {
+  if (a.kept != b.kept) return a.kept;
+  return a.gap > b.gap;
+}
 
 }  // namespace
 
@@ -140,11 +151,17 @@ std::string find_contacts(const BlockSystem& s, const ContactSearch& search,
       if (wedge_a.dot(outward) < -kWedgeTolerance || wedge_b.dot(outward) < -kWedgeTolerance) continue;
       // One contact per (vertex, block): keep the edge with the least penetration,
       // which is the edge the vertex entered through (Shi's entrance rule, simplified).
+      Candidate candidate{e, bj, gap, ratio, false};
+      if (ratio >= 0.0 && ratio <= 1.0) {
+        const auto old = previous.find(contact_key(v, bj));
+        candidate.kept = old != previous.end() && contacts[old->second].edge == e &&
+                         contacts[old->second].state != ContactState::Open;
+      }
       auto slot = std::find_if(best.begin(), best.end(), [&](const Candidate& c) { return c.block_j == bj; });
       if (slot == best.end()) {
-        best.push_back({e, bj, gap, ratio});
-      } else if (gap > slot->gap) {
-        *slot = {e, bj, gap, ratio};
+        best.push_back(candidate);
+      } else if (better(candidate, *slot)) {
+        *slot = candidate;
       }
     }
     for (const Candidate& c : best) {
@@ -181,6 +198,7 @@ std::string find_contacts(const BlockSystem& s, const ContactSearch& search,
         contact.bonded = search.first_step && c.gap <= 0.0 && strong;
       }
       contact.edge = c.edge;
+      contact.start_gap = c.gap;
       contact.step_state = contact.state;
       contact.state_changes = 0;
       found.push_back(contact);

@@ -22,7 +22,10 @@ double max_penetration(const std::vector<Contact>& contacts, int* which) {
   double deepest = 0.0;
   for (int k = 0; k < static_cast<int>(contacts.size()); ++k) {
     const Contact& c = contacts[k];
-    if (c.state != ContactState::Open && -c.normal_gap > deepest) {
+    // Only contacts this step drove deeper: one found already deep (a corner that came
+    // round a corner) cannot be mended by a stiffer spring within the step, only pushed
+    // back out over the next steps.
+    if (c.state != ContactState::Open && c.normal_gap < c.start_gap && -c.normal_gap > deepest) {
       deepest = -c.normal_gap;
       if (which) *which = k;
     }

@@ -13,7 +13,8 @@ namespace ddafit {
 // Largest displacement of any vertex over the step for the solved unknowns d.
 double max_vertex_displacement(const BlockSystem& system, const Eigen::VectorXd& d);
 
-// Deepest penetration (> 0) among closed contacts, and which contact it is.
+// Deepest penetration (> 0) among closed contacts that the step made deeper, and which
+// contact it is.
 double max_penetration(const std::vector<Contact>& contacts, int* which = nullptr);
 
 void update_blocks(BlockSystem& system, std::vector<Contact>& contacts, const Eigen::VectorXd& d,

@@ -1,0 +1,59 @@
+#include "forward/step/energy_check.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+namespace ddafit {
+
+double kinetic_energy(const BlockSystem& s) {
+  double energy = 0.0;
+  for (int b = 0; b < static_cast<int>(s.blocks.size()); ++b) {
+    const Block& block = s.blocks[b];
+    if (block.fixed) continue;
+    const double m = s.mass(b);
+    const double inertia = s.density[block.material] * (block.s_xx + block.s_yy);
+    energy += 0.5 * m * (block.velocity[0] * block.velocity[0] + block.velocity[1] * block.velocity[1]) +
+              0.5 * inertia * block.velocity[2] * block.velocity[2];
+  }
+  return energy;
+}
+
+double potential_energy(const BlockSystem& s, const Vec2& gravity) {
+  double energy = 0.0;
+  for (int b = 0; b < static_cast<int>(s.blocks.size()); ++b)
+    if (!s.blocks[b].fixed) energy -= s.mass(b) * gravity.dot(s.blocks[b].centroid);
+  return energy;
+}
+
+EnergyAudit start_energy_audit(const BlockSystem& s, const Vec2& gravity) {
+  double weight = 0.0;
+  for (int b = 0; b < static_cast<int>(s.blocks.size()); ++b)
+    if (!s.blocks[b].fixed) weight += s.mass(b) * gravity.norm();
+  return {kinetic_energy(s), potential_energy(s, gravity), 1e-4 * weight * s.half_model_size};
+}
+
+std::string check_energy(const EnergyAudit& audit, const BlockSystem& s, const Vec2& gravity) {
+  const double kinetic = kinetic_energy(s);
+  const double released = audit.initial_potential - potential_energy(s, gravity);
+  const double budget = audit.initial_kinetic + released;
+  const double scale = audit.initial_kinetic + std::abs(released) + audit.floor + 1e-300;
+  if (kinetic <= std::max(budget, 0.0) + kEnergyTolerance * scale) return {};
+  int fastest = -1;
+  double speed = -1.0;
+  for (int b = 0; b < static_cast<int>(s.blocks.size()); ++b) {
+    const Vec2 v(s.blocks[b].velocity[0], s.blocks[b].velocity[1]);
+    if (!s.blocks[b].fixed && v.norm() > speed) {
+      speed = v.norm();
+      fastest = b;
+    }
+  }
+  std::ostringstream out;
+  out << "kinetic energy " << kinetic << " J/m exceeds what gravity has supplied (" << budget
+      << " J/m): contacts are creating energy (fastest block '" << s.block_names[fastest] << "' at " << speed
+      << " m/s); results from here on would be meaningless. Lower time.step or control.max_displacement_ratio, "
+         "or tighten control.max_penetration_ratio";
+  return out.str();
+}
+
+}  // namespace ddafit

@@ -1,0 +1,34 @@
+// An energy audit of the run. DDA's contacts and time scheme can only dissipate, so the
+// kinetic energy may never exceed the initial kinetic energy plus the work gravity has
+// done since t = 0. A run that breaks this is creating energy (a contact pumping blocks
+// apart) and its results are garbage however smoothly it continues.
+#pragma once
+
+#include <string>
+
+#include "forward/block_system.hpp"
+
+namespace ddafit {
+
+struct EnergyAudit {
+  double initial_kinetic = 0.0;    // J per metre of thickness
+  double initial_potential = 0.0;  // -sum m g.x of the centroids at t = 0
+  // Floor of the energy scale: 1e-4 of sum m |g| x half the model size. The audit does
+  // not count the energy stored in contact springs and strains, which moves blocks by
+  // micrometres at rest (a settled stack rises 2 um); the floor covers that.
+  double floor = 0.0;
+};
+
+double kinetic_energy(const BlockSystem& system);   // translation and rotation
+double potential_energy(const BlockSystem& system, const Vec2& gravity);
+
+EnergyAudit start_energy_audit(const BlockSystem& system, const Vec2& gravity);
+
+// Allowed excess over the budget, as a fraction of the energy scale: the first-order
+// rotational and strain terms make the kinetic energy approximate to about a percent.
+constexpr double kEnergyTolerance = 0.05;
+
+// Empty when the budget holds, else a diagnosis naming the fastest block.
+std::string check_energy(const EnergyAudit& audit, const BlockSystem& system, const Vec2& gravity);
+
+}  // namespace ddafit
