@@ -28,6 +28,7 @@ struct Contact {
   double slip_direction = 0.0;  // s = +1/-1, sign of the slip of P1 relative to j along t
 
   double accumulated_slip = 0.0;   // d of seed Eq. 2: sum of |slip| over accepted steps
+  double last_step_slip = 0.0;     // |slip| of the last accepted step (the mid-step predictor)
   double critical_distance = 0.0;  // d_c of seed Eq. 2
   double normal_force = 0.0;       // N >= 0 from the last iterate (compression)
   double bond_length = 0.0;        // l_c: length that cohesion and tension act on

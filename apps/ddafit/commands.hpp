@@ -29,6 +29,13 @@ struct MeshArgs {
 };
 int run_mesh(const MeshArgs& args);
 
+struct PlotArgs {
+  std::string scene;
+  std::string dir;
+  std::vector<std::string> sets;
+};
+int run_plot(const PlotArgs& args);
+
 struct StableArgs {
   std::string scene;
   std::string interface;

@@ -28,6 +28,12 @@ int main(int argc, char** argv) {
   mesh_cmd->add_option("--out", mesh.out, "output folder")->capture_default_str();
   mesh_cmd->add_option("--set", mesh.sets, "override a scene value, KEY=VALUE (repeatable)");
 
+  PlotArgs pl;
+  CLI::App* plot = app.add_subcommand("plot", "draw the charts of a finished run from its history.csv");
+  plot->add_option("scene", pl.scene, "the scene the run used (for the point names)")->required();
+  plot->add_option("dir", pl.dir, "the run's output folder")->required();
+  plot->add_option("--set", pl.sets, "the overrides the run used, KEY=VALUE (repeatable)");
+
   StableArgs st;
   CLI::App* stable = app.add_subcommand("stable", "bisect an interface's friction angle for the stable state");
   stable->add_option("scene", st.scene, "scene file (YAML)")->required();
@@ -61,5 +67,6 @@ int main(int argc, char** argv) {
   if (*verify) return run_verify(ver);
   if (*mesh_cmd) return run_mesh(mesh);
   if (*stable) return run_stable(st);
+  if (*plot) return run_plot(pl);
   return kExitBadInput;
 }

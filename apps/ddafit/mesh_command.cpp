@@ -67,4 +67,27 @@ int run_mesh(const MeshArgs& args) {
   return kExitSuccess;
 }
 
+int run_plot(const PlotArgs& args) {
+  std::vector<std::pair<std::string, std::string>> overrides;
+  if (!parse_overrides(args.sets, overrides)) return kExitBadInput;
+  Scene scene;
+  try {
+    scene = io::read_scene(args.scene, overrides);
+  } catch (const io::SceneReadError& e) {
+    std::cerr << e.what() << "\n";
+    return kExitBadInput;
+  }
+  if (!std::filesystem::exists(std::filesystem::path(args.dir) / "history.csv")) {
+    std::cerr << args.dir << ": no history.csv here (run ddafit simulate first)\n";
+    return kExitBadInput;
+  }
+  std::string reason;
+  if (!plot_history(args.dir, scene, reason)) {
+    std::cerr << "charts not drawn: " << reason << "\n";
+    return kExitRunFailed;
+  }
+  std::cout << "wrote distance_time.png, velocity_time.png, velocity_distance.png in " << args.dir << "\n";
+  return kExitSuccess;
+}
+
 }  // namespace ddafit::app

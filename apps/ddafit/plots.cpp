@@ -52,13 +52,14 @@ bool plot_history(const std::string& dir, const Scene& scene, std::string& reaso
     gp.print("set datafile separator ','\nset terminal pngcairo size 1200,800 font ',12'\nset key outside right\n");
     gp.print("set grid\n");
     // Column numbers of history.csv: time 1, point 2, x 3, y 4, ux 5, uy 6, vx 7, vy 8.
+    // Rows come time by time, one per point in scene order, so point k is every n-th
+    // row from row k (a filter on the name would break each line at the other rows).
+    const size_t n = scene.measure.size();
     const auto curves = [&](const std::string& x, const std::string& y) {
       std::string plot = "plot ";
-      for (size_t k = 0; k < scene.measure.size(); ++k) {
-        const std::string& name = scene.measure[k].name;
-        plot += fmt::format("{}'{}' using (strcol(2) eq '{}' ? {} : 1/0):({}) with lines lw 2 title '{}'",
-                            k ? ", " : "", csv, name, x, y, name);
-      }
+      for (size_t k = 0; k < n; ++k)
+        plot += fmt::format("{}'{}' skip 1 every {}::{} using ({}):({}) with lines lw 2 title '{}'", k ? ", " : "",
+                            csv, n, k, x, y, scene.measure[k].name);
       return plot + "\n";
     };
     gp.print("set output '{}'\nset xlabel 'time (s)'\nset ylabel 'distance |u| (m)'\n", (d / "distance_time.png").string());

@@ -64,7 +64,10 @@ void add_spring(const Block& bi, const Block& bj, const Vec6& a, const Vec6& b, 
 
 double sliding_friction_force(const BlockSystem& s, const Contact& c) {
   const Interface& face = s.interfaces[c.interface];
-  const double mid_slip = c.accumulated_slip + 0.5 * std::abs(sliding_slip(c));
+  // The step's own slip would feed back inside the open-close iteration (a trial pass
+  // that slips far degrades friction, which lets the next pass slip further); the last
+  // accepted step's slip predicts it to second order without that loop.
+  const double mid_slip = c.accumulated_slip + 0.5 * c.last_step_slip;
   return c.normal_force * tan_degrees(degraded_friction_angle(face, mid_slip, c.critical_distance));
 }
 

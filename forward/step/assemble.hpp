@@ -28,8 +28,8 @@ void assemble(const BlockSystem& system, const std::vector<Contact>& contacts,
               const StepParameters& step, BlockSparseMatrix& k, Eigen::VectorXd& f);
 
 // Friction force magnitude of a sliding contact: N tan(phi) with phi degraded at the
-// middle of the step's slip (seed Eq. 3 evaluated at d + |slip|/2, which keeps the
-// lag of an explicit update out of the acceleration).
+// middle of the step's slip (seed Eq. 3 at d + |slip|/2, the slip predicted by the last
+// accepted step's), which keeps the lag of an explicit update out of the acceleration.
 double sliding_friction_force(const BlockSystem& system, const Contact& contact);
 
 }  // namespace ddafit

@@ -55,12 +55,16 @@ void update_blocks(BlockSystem& s, std::vector<Contact>& contacts, const Eigen::
     if (!s.blocks[bid].fixed) refresh_block_geometry(s, bid);
 
   for (Contact& c : contacts) {
-    if (c.state == ContactState::Locked) continue;  // keeps its reference point, fixed to block j
+    if (c.state == ContactState::Locked) {
+      c.last_step_slip = 0.0;
+      continue;  // keeps its reference point, fixed to block j
+    }
     const Vec2& p2 = s.vertices[c.edge];
     const Vec2 e = s.vertices[s.next_vertex(c.edge)] - p2;
     double offset = 0.0;
+    c.last_step_slip = c.state == ContactState::Sliding ? std::abs(sliding_slip(c)) : 0.0;
     if (c.state == ContactState::Sliding) {
-      c.accumulated_slip += std::abs(sliding_slip(c));  // seed Eq. 2
+      c.accumulated_slip += c.last_step_slip;  // seed Eq. 2
       // The reference trails the vertex by the friction force over the shear spring, so
       // that should the contact lock in the next step, its spring takes over at the
       // friction force instead of at zero: a sudden loss of resistance at every stick
