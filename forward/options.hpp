@@ -31,7 +31,8 @@ struct SimulationOptions {
   double min_step_ratio = 1.0e-6;
 
   // Largest penetration of a closed contact, as a fraction of half the model size
-  // (Shi: 2.5 x 0.0004). Deeper contacts raise the penalty and redo the step.
+  // (Shi: 2.5 x 0.0004). Deeper contacts raise the penalty and redo the step, at most
+  // max_penalty_raises times in one step; the penalty relaxes back when calm.
   double max_penetration_ratio = 1.0e-3;
   double penalty_raise_factor = 3.0;
   int max_penalty_raises = 6;

@@ -227,7 +227,7 @@ SimulationResult simulate(const Scene& scene, const SimulationHooks& hooks) {
           if (!raise_penalty(control, options)) {
             fail(RunStatus::Failed, "penetration " + std::to_string(depth) + " m at the " + where +
                                         " stays above the limit after " + std::to_string(control.penalty_raises) +
-                                        " penalty raises in this run (control.max_penalty_raises): lower time.step "
+                                        " penalty raises in this step (control.max_penalty_raises): lower time.step "
                                         "or control.max_displacement_ratio, or raise control.penalty");
             break;
           }

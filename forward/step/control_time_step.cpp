@@ -4,6 +4,10 @@
 
 namespace ddafit {
 
+// A raised penalty falls back by this factor per calm step (it rises by
+// penalty_raise_factor, default 3, per redo).
+constexpr double kPenaltyRelaxation = 1.2;
+
 TimeStepControl make_time_step_control(const SimulationOptions& options, double max_step,
                                        double half_model_size, double penalty) {
   TimeStepControl c;
@@ -12,7 +16,7 @@ TimeStepControl make_time_step_control(const SimulationOptions& options, double 
   c.max_displacement = options.max_displacement_ratio * half_model_size;
   c.max_penetration = options.max_penetration_ratio * half_model_size;
   c.step = max_step;
-  c.penalty = penalty;
+  c.penalty = c.base_penalty = penalty;
   return c;
 }
 
@@ -31,7 +35,9 @@ bool raise_penalty(TimeStepControl& c, const SimulationOptions& options) {
 
 void grow_step(TimeStepControl& c, const SimulationOptions& options) {
   if (!c.cut_this_step) c.step = std::min(c.step * options.step_growth_factor, c.max_step);
+  if (c.penalty_raises == 0) c.penalty = std::max(c.base_penalty, c.penalty / kPenaltyRelaxation);
   c.cut_this_step = false;
+  c.penalty_raises = 0;
 }
 
 }  // namespace ddafit

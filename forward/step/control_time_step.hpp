@@ -16,8 +16,9 @@ struct TimeStepControl {
   double max_displacement = 0.0;  // m per step
   double max_penetration = 0.0;   // m
   double step = 0.0;              // s, the step the next attempt uses
+  double base_penalty = 0.0;      // N/m, the scene's penalty, the floor the penalty relaxes to
   double penalty = 0.0;           // N/m, current normal penalty
-  int penalty_raises = 0;
+  int penalty_raises = 0;         // raises within the current step
   bool cut_this_step = false;
 };
 
@@ -28,7 +29,9 @@ TimeStepControl make_time_step_control(const SimulationOptions& options, double 
 bool cut_step(TimeStepControl& control, double factor);
 bool raise_penalty(TimeStepControl& control, const SimulationOptions& options);
 
-// After an accepted step: grow the step again unless it was just cut.
+// After an accepted step: grow the step again unless it was just cut, and let a raised
+// penalty relax towards the scene's (as the step grows back when calm, a penalty
+// raised for one hard impact should not stiffen the rest of the run).
 void grow_step(TimeStepControl& control, const SimulationOptions& options);
 
 }  // namespace ddafit
