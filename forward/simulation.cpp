@@ -223,27 +223,29 @@ SimulationResult simulate(const Scene& scene, const SimulationHooks& hooks) {
         const double depth = max_penetration(contacts, &deepest);
         if (depth > control.max_penetration) {
           const std::string where = describe_contact(system, contacts[deepest]);
-          contacts = saved;
-          if (!raise_penalty(control, options)) {
-            fail(RunStatus::Failed, "penetration " + std::to_string(depth) + " m at the " + where +
-                                        " stays above the limit after " + std::to_string(control.penalty_raises) +
-                                        " penalty raises in this step (control.max_penalty_raises): lower time.step "
-                                        "or control.max_displacement_ratio, or raise control.penalty");
-            break;
+          if (raise_penalty(control, options)) {
+            contacts = saved;
+            ++run.penalty_raises;
+            continue;
           }
-          ++run.penalty_raises;
-          continue;
+          // A stiffer spring did not help: a corner running into a corner is caught
+          // earlier by a shorter step. Only when the step can no longer shrink does the
+          // run stop.
+          why = "penetration " + std::to_string(depth) + " m at the " + where + " stays above the limit after " +
+                std::to_string(control.penalty_raises) + " penalty raises in this step";
+          control.penalty_raises = 0;
+        } else {
+          accepted = true;
+          break;
         }
-        accepted = true;
-        break;
       }
       contacts = saved;
       ++run.step_cuts;
       control.step = attempt;
       if (!cut_step(control, factor)) {
         fail(RunStatus::Failed, why + "; the time step fell below " + std::to_string(control.min_step) +
-                                    " s. Try a smaller time.step, a softer control.penalty or a larger "
-                                    "control.max_open_close_iterations");
+                                    " s. Try a smaller time.step or control.max_displacement_ratio, a different "
+                                    "control.penalty, or a larger control.max_open_close_iterations");
         break;
       }
     }
