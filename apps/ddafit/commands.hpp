@@ -6,11 +6,16 @@
 #include <vector>
 
 #include "forward/analysis/stable_friction.hpp"
+#include "forward/scene.hpp"
 
 namespace ddafit::app {
 
 // "KEY=VALUE" scene overrides from --set, split into pairs; returns false on a bad one.
 bool parse_overrides(const std::vector<std::string>& sets, std::vector<std::pair<std::string, std::string>>& out);
+
+// Reads a scene with --set overrides; on failure prints the one-line error and
+// returns false (exit code 2).
+bool load_scene(const std::string& path, const std::vector<std::string>& sets, Scene& scene);
 
 struct SimulateArgs {
   std::string scene;

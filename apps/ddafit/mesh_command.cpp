@@ -15,15 +15,8 @@
 namespace ddafit::app {
 
 int run_mesh(const MeshArgs& args) {
-  std::vector<std::pair<std::string, std::string>> overrides;
-  if (!parse_overrides(args.sets, overrides)) return kExitBadInput;
   Scene scene;
-  try {
-    scene = io::read_scene(args.scene, overrides);
-  } catch (const io::SceneReadError& e) {
-    std::cerr << e.what() << "\n";
-    return kExitBadInput;
-  }
+  if (!load_scene(args.scene, args.sets, scene)) return kExitBadInput;
   // The reader already cut the regions; cutting again gives the statistics.
   std::string problem;
   const std::vector<RegionMesh> meshes = generate_blocks(scene, problem);
@@ -68,15 +61,8 @@ int run_mesh(const MeshArgs& args) {
 }
 
 int run_plot(const PlotArgs& args) {
-  std::vector<std::pair<std::string, std::string>> overrides;
-  if (!parse_overrides(args.sets, overrides)) return kExitBadInput;
   Scene scene;
-  try {
-    scene = io::read_scene(args.scene, overrides);
-  } catch (const io::SceneReadError& e) {
-    std::cerr << e.what() << "\n";
-    return kExitBadInput;
-  }
+  if (!load_scene(args.scene, args.sets, scene)) return kExitBadInput;
   if (!std::filesystem::exists(std::filesystem::path(args.dir) / "history.csv")) {
     std::cerr << args.dir << ": no history.csv here (run ddafit simulate first)\n";
     return kExitBadInput;

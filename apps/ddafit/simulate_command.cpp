@@ -26,6 +26,18 @@ bool parse_overrides(const std::vector<std::string>& sets, std::vector<std::pair
   return true;
 }
 
+bool load_scene(const std::string& path, const std::vector<std::string>& sets, Scene& scene) {
+  std::vector<std::pair<std::string, std::string>> overrides;
+  if (!parse_overrides(sets, overrides)) return false;
+  try {
+    scene = io::read_scene(path, overrides);
+  } catch (const io::SceneReadError& e) {
+    std::cerr << e.what() << "\n";
+    return false;
+  }
+  return true;
+}
+
 int run_simulate(const SimulateArgs& args) {
   Scene scene;
   std::string label = args.scene;
@@ -36,14 +48,7 @@ int run_simulate(const SimulateArgs& args) {
     scene = verification::incline_scene(setup);
     label = "built-in incline (phi = 25 deg, i = 5 deg)";
   } else {
-    std::vector<std::pair<std::string, std::string>> overrides;
-    if (!parse_overrides(args.sets, overrides)) return kExitBadInput;
-    try {
-      scene = io::read_scene(args.scene, overrides);
-    } catch (const io::SceneReadError& e) {
-      std::cerr << e.what() << "\n";
-      return kExitBadInput;
-    }
+    if (!load_scene(args.scene, args.sets, scene)) return kExitBadInput;
   }
   std::error_code ec;
   std::filesystem::create_directories(args.out, ec);

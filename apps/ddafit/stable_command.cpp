@@ -13,15 +13,8 @@
 namespace ddafit::app {
 
 int run_stable(const StableArgs& args) {
-  std::vector<std::pair<std::string, std::string>> overrides;
-  if (!parse_overrides(args.sets, overrides)) return kExitBadInput;
   Scene scene;
-  try {
-    scene = io::read_scene(args.scene, overrides);
-  } catch (const io::SceneReadError& e) {
-    std::cerr << e.what() << "\n";
-    return kExitBadInput;
-  }
+  if (!load_scene(args.scene, args.sets, scene)) return kExitBadInput;
   StableSearchOptions o = args.options;
   for (size_t k = 0; k < scene.interfaces.size(); ++k)
     if (scene.interfaces[k].name == args.interface) o.interface = static_cast<int>(k);
