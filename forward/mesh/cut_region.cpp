@@ -237,11 +237,12 @@ std::vector<std::vector<Vec2>> cut_region(const RegionInput& region, const MeshS
       const auto start = he;
       do longest = std::max(longest, (to_vec(he->target()->point()) - to_vec(he->source()->point())).norm());
       while (++he != start);
-      // Second tier, when no neighbour passes: any edge, no size cap; a sliver left
-      // alone is worse than a large block.
+      // Second tier, when no neighbour passes: any edge, four times the size cap; third,
+      // no cap at all, since a sliver left alone is worse than a large block. Going
+      // uncapped at once made merges snowball when many blocks count as slivers.
       Arrangement::Halfedge_handle best;
       double best_area = 1e300;
-      for (int tier = 0; tier < 2 && best_area == 1e300; ++tier) {
+      for (int tier = 0; tier < 3 && best_area == 1e300; ++tier) {
         do {
           auto other = he->twin()->face();
           const double length = (to_vec(he->target()->point()) - to_vec(he->source()->point())).norm();
@@ -249,7 +250,8 @@ std::vector<std::vector<Vec2>> cut_region(const RegionInput& region, const MeshS
           if (tier == 0 && length < 0.25 * longest) continue;
           if (std::find(touched.begin(), touched.end(), other) != touched.end()) continue;
           const double other_area = signed_area(face_polygon(other));
-          if (tier == 0 && own_area + other_area > kMaxMergedAreaRatio * block_size * block_size) continue;
+          const double cap = tier == 2 ? 1e300 : (tier == 0 ? 1.0 : 4.0) * kMaxMergedAreaRatio * block_size * block_size;
+          if (own_area + other_area > cap) continue;
           if (other_area < best_area && mergeable(f, other)) {
             best_area = other_area;
             best = he;
