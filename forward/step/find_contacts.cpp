@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <unordered_map>
 
 namespace ddafit {
@@ -78,9 +77,6 @@ struct Candidate {
   double gap = 0.0;
   double ratio = 0.0;
   bool kept = false;  // the edge this vertex touched in the previous step, still under it
-  // Time back along the vertex's velocity relative to block j to the edge's line: the
-  // line reached first going back is the one crossed last, the way the vertex came in.
-  double entry_time = std::numeric_limits<double>::infinity();
 };
 
 // Which of two edges of one block a vertex touches. Shi's entrance rule asks for the
@@ -90,7 +86,6 @@ struct Candidate {
 // deep near a corner of the other block.
 bool better(const Candidate& a, const Candidate& b) {
   if (a.kept != b.kept) return a.kept;
-  if (a.gap < 0.0 && b.gap < 0.0 && a.entry_time != b.entry_time) return a.entry_time < b.entry_time;
   return a.gap > b.gap;
 }
 
@@ -157,16 +152,6 @@ std::string find_contacts(const BlockSystem& s, const ContactSearch& search,
       // One contact per (vertex, block): keep the edge with the least penetration,
       // which is the edge the vertex entered through (Shi's entrance rule, simplified).
       Candidate candidate{e, bj, gap, ratio, false};
-      if (gap < 0.0) {
-        // Velocity of P1 relative to block j's material at P1 (first-order field).
-        const Block& blk_i = s.blocks[bi];
-        const Block& blk_j = s.blocks[bj];
-        Vec2 relative = Vec2::Zero();
-        if (!blk_i.fixed) relative += displacement_matrix(p1, blk_i.centroid) * blk_i.velocity;
-        if (!blk_j.fixed) relative -= displacement_matrix(p1, blk_j.centroid) * blk_j.velocity;
-        const double approach = relative.dot(outward);
-        if (approach < 0.0) candidate.entry_time = gap / approach;
-      }
       if (ratio >= 0.0 && ratio <= 1.0) {
         const auto old = previous.find(contact_key(v, bj));
         candidate.kept = old != previous.end() && contacts[old->second].edge == e &&
