@@ -127,6 +127,11 @@ SimulationResult simulate(const Scene& scene, const SimulationHooks& hooks) {
   search.search_distance = options.search_distance_factor * control.max_displacement;
   search.first_step = true;
 
+  // The springs and loads of one attempt at a step of length dt.
+  const auto step_parameters = [&](double dt) {
+    return StepParameters{dt, control.penalty, options.shear_penalty_ratio * control.penalty, scene.gravity,
+                          options.contact_tolerance_ratio * control.max_displacement};
+  };
   std::vector<Contact> contacts, saved;
   BlockSparseMatrix k;
   Eigen::VectorXd f, d;
@@ -153,8 +158,7 @@ SimulationResult simulate(const Scene& scene, const SimulationHooks& hooks) {
       return result;
     }
     ScopedTimer timer(profile.settle);
-    const StepParameters step{control.step, control.penalty, options.shear_penalty_ratio * control.penalty,
-                              scene.gravity, options.contact_tolerance_ratio * control.max_displacement};
+    const StepParameters step = step_parameters(control.step);
     if (!settle_contacts(system, contacts, step, options.settle_passes, kSettleShiftSteps * control.max_displacement,
                          solver)) {
       summary.status = RunStatus::Failed;
@@ -202,9 +206,7 @@ SimulationResult simulate(const Scene& scene, const SimulationHooks& hooks) {
         attempt = target - time;
         landing = target;
       }
-      const StepParameters step{attempt, control.penalty, options.shear_penalty_ratio * control.penalty,
-                                scene.gravity,
-                                options.contact_tolerance_ratio * control.max_displacement};
+      const StepParameters step = step_parameters(attempt);
       const OpenCloseResult oc =
           open_close_iterate(system, contacts, step, options, solver, k, f, d, profile);
       run.open_close_iterations += oc.iterations;

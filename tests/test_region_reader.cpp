@@ -78,20 +78,24 @@ TEST(RegionReader, MissingCsv) {
                "regions[0].below.surface", "cannot read"));
 }
 
-TEST(RegionReader, CsvWithXGoingBack) {
+// Writes a CSV file into a scratch folder and returns the folder.
+std::string scratch_csv(const std::string& name, const std::string& text) {
   const std::filesystem::path dir = std::filesystem::temp_directory_path() / "ddafit_region_reader";
   std::filesystem::create_directories(dir);
-  std::ofstream(dir / "back.csv") << "x,y\n0,10\n5,11\n3,12\n";
+  std::ofstream(dir / name) << text;
+  return dir.string();
+}
+
+TEST(RegionReader, CsvWithXGoingBack) {
+  const std::string dir = scratch_csv("back.csv", "x,y\n0,10\n5,11\n3,12\n");
   EXPECT_NO_FATAL_FAILURE(expect_error("regions: [{name: r, material: rock, below: {surface: back.csv, base: 0}}]\n",
-               "regions[0].below.surface", "x must increase", dir.string()));
+               "regions[0].below.surface", "x must increase", dir));
 }
 
 TEST(RegionReader, BaseAboveTheSurface) {
-  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "ddafit_region_reader";
-  std::filesystem::create_directories(dir);
-  std::ofstream(dir / "surface.csv") << "x,y\n0,10\n5,11\n";
+  const std::string dir = scratch_csv("surface.csv", "x,y\n0,10\n5,11\n");
   EXPECT_NO_FATAL_FAILURE(expect_error("regions: [{name: r, material: rock, below: {surface: surface.csv, base: 10.5}}]\n",
-               "regions[0].below.base", "below every point", dir.string()));
+               "regions[0].below.base", "below every point", dir));
 }
 
 TEST(RegionReader, JointsWithoutBlockSize) {

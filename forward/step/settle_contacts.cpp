@@ -4,6 +4,7 @@
 
 #include "forward/contact_geometry.hpp"
 #include "forward/step/assemble.hpp"
+#include "forward/step/update_blocks.hpp"
 
 namespace ddafit {
 
@@ -29,31 +30,16 @@ bool settle_contacts(BlockSystem& s, std::vector<Contact>& contacts, const StepP
     std::string reason;
     ok = solver.solve(k, f, d, reason);
     if (!ok) break;
+    const auto moving = [&](int b) { return s.blocks[b].unknown >= 0 && touching[b]; };
+    const auto unknowns = [&](int b) -> Vec6 { return d.segment<6>(6 * s.blocks[b].unknown); };
     double largest = 0.0;
-    for (size_t b = 0; b < s.blocks.size(); ++b) {
-      const Block& block = s.blocks[b];
-      if (block.unknown < 0 || !touching[b]) continue;
-      const Vec6 db = d.segment<6>(6 * block.unknown);
-      for (int v = block.first_vertex; v < block.first_vertex + block.vertex_count; ++v)
-        largest = std::max(largest, exact_point_displacement(s.vertices[v], block.centroid, db).norm());
-    }
+    for (int b = 0; b < static_cast<int>(s.blocks.size()); ++b)
+      if (moving(b)) largest = std::max(largest, block_displacement(s, b, unknowns(b)));
     if (largest > max_shift) break;
     const bool converged = largest <= kSettleTolerance * max_shift;
-    for (size_t b = 0; b < s.blocks.size(); ++b) {
-      Block& block = s.blocks[b];
-      if (block.unknown < 0 || !touching[b]) continue;
-      const Vec6 db = d.segment<6>(6 * block.unknown);
-      for (int v = block.first_vertex; v < block.first_vertex + block.vertex_count; ++v)
-        s.vertices[v] += exact_point_displacement(s.vertices[v], block.centroid, db);
-      for (MaterialPoint& p : s.points)
-        if (p.block == static_cast<int>(b)) {
-          const Vec2 shift = exact_point_displacement(p.position, block.centroid, db);
-          p.position += shift;
-          p.initial_position += shift;  // settling is not part of the measured motion
-        }
-      block.stress += s.elastic[block.material] * db.segment<3>(3);
-      refresh_block_geometry(s, static_cast<int>(b));
-    }
+    // Settling is not part of the measured motion: the points' origins move too.
+    for (int b = 0; b < static_cast<int>(s.blocks.size()); ++b)
+      if (moving(b)) displace_block(s, b, unknowns(b), false);
     // A contact that was open at t = 0 and now penetrates closes (locked where it
     // is), or the next pass would let the blocks sink through each other and the first
     // dynamic step would fire them apart.

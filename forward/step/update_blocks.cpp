@@ -7,15 +7,35 @@
 
 namespace ddafit {
 
+double block_displacement(const BlockSystem& s, int b, const Vec6& db) {
+  const Block& block = s.blocks[b];
+  double largest = 0.0;
+  for (int v = block.first_vertex; v < block.first_vertex + block.vertex_count; ++v)
+    largest = std::max(largest, exact_point_displacement(s.vertices[v], block.centroid, db).norm());
+  return largest;
+}
+
 double max_vertex_displacement(const BlockSystem& s, const Eigen::VectorXd& d) {
   double largest = 0.0;
-  for (const Block& b : s.blocks) {
-    if (b.unknown < 0) continue;
-    const Vec6 db = d.segment<6>(6 * b.unknown);
-    for (int v = b.first_vertex; v < b.first_vertex + b.vertex_count; ++v)
-      largest = std::max(largest, exact_point_displacement(s.vertices[v], b.centroid, db).norm());
-  }
+  for (int b = 0; b < static_cast<int>(s.blocks.size()); ++b)
+    if (s.blocks[b].unknown >= 0)
+      largest = std::max(largest, block_displacement(s, b, d.segment<6>(6 * s.blocks[b].unknown)));
   return largest;
+}
+
+void displace_block(BlockSystem& s, int b, const Vec6& db, bool measured) {
+  Block& block = s.blocks[b];
+  for (int v = block.first_vertex; v < block.first_vertex + block.vertex_count; ++v)
+    s.vertices[v] += exact_point_displacement(s.vertices[v], block.centroid, db);
+  // Material points move with the same map, before the centroid is refreshed.
+  for (MaterialPoint& p : s.points) {
+    if (p.block != b) continue;
+    const Vec2 shift = exact_point_displacement(p.position, block.centroid, db);
+    p.position += shift;
+    if (!measured) p.initial_position += shift;
+  }
+  block.stress += s.elastic[block.material] * db.segment<3>(3);
+  refresh_block_geometry(s, b);
 }
 
 double max_penetration(const std::vector<Contact>& contacts, int* which) {
@@ -39,20 +59,10 @@ void update_blocks(BlockSystem& s, std::vector<Contact>& contacts, const Eigen::
     Block& b = s.blocks[bid];
     if (b.unknown < 0) continue;
     const Vec6 db = d.segment<6>(6 * b.unknown);
-    for (int v = b.first_vertex; v < b.first_vertex + b.vertex_count; ++v)
-      s.vertices[v] += exact_point_displacement(s.vertices[v], b.centroid, db);
     // Constant acceleration over the step: V1 = 2 D / dt - V0.
     b.velocity = (2.0 / dt) * db - b.velocity;
-    b.stress += s.elastic[b.material] * db.segment<3>(3);
+    displace_block(s, bid, db, true);
   }
-  // Material points move with the same map, before the centroids are refreshed.
-  for (MaterialPoint& p : s.points) {
-    const Block& b = s.blocks[p.block];
-    if (b.unknown < 0) continue;
-    p.position += exact_point_displacement(p.position, b.centroid, d.segment<6>(6 * b.unknown));
-  }
-  for (int bid = 0; bid < static_cast<int>(s.blocks.size()); ++bid)
-    if (!s.blocks[bid].fixed) refresh_block_geometry(s, bid);
 
   for (Contact& c : contacts) {
     if (c.state == ContactState::Locked) {

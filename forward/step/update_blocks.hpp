@@ -13,6 +13,14 @@ namespace ddafit {
 // Largest displacement of any vertex over the step for the solved unknowns d.
 double max_vertex_displacement(const BlockSystem& system, const Eigen::VectorXd& d);
 
+// Largest displacement of a vertex of block b for its unknowns db.
+double block_displacement(const BlockSystem& system, int b, const Vec6& db);
+
+// Moves block b and its material points by db (exact rotation), adds the strain's
+// stress and refreshes the block's geometry. When the motion is not part of the
+// measured history (settling), the points' origins move with them.
+void displace_block(BlockSystem& system, int b, const Vec6& db, bool measured);
+
 // Deepest penetration (> 0) among closed contacts that the step made deeper, and which
 // contact it is.
 double max_penetration(const std::vector<Contact>& contacts, int* which = nullptr);
