@@ -12,6 +12,8 @@ packages=(
   libyaml-cpp-dev                # scene files
   libcli11-dev libfmt-dev nlohmann-json3-dev   # command line, formatting, summary.json
   libgtest-dev libgmock-dev      # tests
+  libnlopt-dev libceres-dev      # optimisers for ddafit invert
+  libsqlite3-dev                 # the inversion's evaluation cache
   libbenchmark-dev               # bench/
   gnuplot-nox                    # PNG charts (ddafit mesh, simulate --plots)
 )
