@@ -11,6 +11,10 @@ namespace {
 // enter through that edge (Shi's angle test; it removes false contacts at corners).
 constexpr double kWedgeTolerance = 0.15;
 
+// Deepest penetration, as a fraction of the search distance, of a vertex that lies beyond
+// the end of an edge and still counts as touching it.
+constexpr double kExtensionDepth = 0.1;
+
 struct EdgeGrid {
   double cell = 1.0;
   std::vector<std::pair<std::uint64_t, int>> entries;  // (cell key, edge start vertex), sorted
@@ -142,6 +146,11 @@ std::string find_contacts(const BlockSystem& s, const ContactSearch& search,
       // beside the block, and the extended line would report a false penetration (a
       // corner sliding past a corner read 0.4 m "deep" and wrecked the Vajont run).
       if (ratio < 0.0 || ratio > 1.0) {
+        // Beyond the end, the zone only catches corners approaching corners; a vertex
+        // already deep there is inside the corner of block j and belongs to the
+        // neighbouring edge. Measured from this edge's line its depth is unbounded (a
+        // spring at 0.6 m threw Vajont blocks at 150 m/s).
+        if (gap < -kExtensionDepth * rho) continue;
         const int corner = ratio > 1.0 ? s.next_vertex(e) : e;
         const int a = ratio > 1.0 ? corner : s.previous_vertex(corner);
         const Vec2 da = s.vertices[s.next_vertex(a)] - s.vertices[a];
