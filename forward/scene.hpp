@@ -77,6 +77,10 @@ struct MeshSettings {
   double block_size = 0.0;       // m: the one knob that scales every joint spacing
   double min_area_ratio = 0.05;  // blocks smaller than this x block_size^2 are merged
   double min_angle = 10.0;       // deg: blocks with a sharper corner are merged
+  // Blocks with an edge shorter than this x block_size are merged across it. Two joints
+  // crossing a third a few centimetres apart leave such edges; a vertex-edge contact on
+  // one is ill-defined once a step moves a block further than the edge is long.
+  double min_edge_ratio = 0.05;
 };
 
 struct Scene {

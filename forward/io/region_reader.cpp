@@ -74,13 +74,15 @@ std::vector<Vec2> read_polyline_csv(const YamlChecks& checks, const std::string&
 void read_regions(const YamlChecks& c, const YAML::Node& mesh, const YAML::Node& regions,
                   const std::string& base_dir, Scene& s) {
   if (mesh) {
-    c.check_keys(mesh, "mesh", {"block_size", "min_area_ratio", "min_angle"});
+    c.check_keys(mesh, "mesh", {"block_size", "min_area_ratio", "min_angle", "min_edge_ratio"});
     c.opt_number(mesh, "mesh", "block_size", s.mesh.block_size);
     c.opt_number(mesh, "mesh", "min_area_ratio", s.mesh.min_area_ratio);
     c.opt_number(mesh, "mesh", "min_angle", s.mesh.min_angle);
+    c.opt_number(mesh, "mesh", "min_edge_ratio", s.mesh.min_edge_ratio);
     if (!(s.mesh.block_size >= 0.0)) c.fail("mesh.block_size", "must be > 0 m");
     if (!(s.mesh.min_area_ratio >= 0.0 && s.mesh.min_area_ratio < 1.0)) c.fail("mesh.min_area_ratio", "must be in [0, 1)");
     if (!(s.mesh.min_angle >= 0.0 && s.mesh.min_angle < 60.0)) c.fail("mesh.min_angle", "must be in [0, 60) degrees");
+    if (!(s.mesh.min_edge_ratio >= 0.0 && s.mesh.min_edge_ratio < 0.5)) c.fail("mesh.min_edge_ratio", "must be in [0, 0.5)");
   }
   if (!regions) return;
   c.list(regions, "regions");

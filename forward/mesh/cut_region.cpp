@@ -8,6 +8,7 @@
 #include <CGAL/Exact_predicates_exact_constructions_kernel.h>
 
 #include <algorithm>
+#include <limits>
 #include <cmath>
 #include <optional>
 
@@ -77,20 +78,43 @@ Vec2 interior_point(const std::vector<Vec2>& poly) {
   return m.centroid;
 }
 
+// Interior angle of the corner at p between its neighbours (degrees; > 180 for a
+// reflex corner of a counter-clockwise polygon).
+double corner_angle(const Vec2& previous, const Vec2& p, const Vec2& next) {
+  const Vec2 a = (previous - p).normalized(), b = (next - p).normalized();
+  const double angle = std::acos(std::clamp(a.dot(b), -1.0, 1.0)) * 180.0 / M_PI;
+  return cross(previous, p, next) < 0.0 ? 360.0 - angle : angle;
+}
+
+bool is_region_corner(const Vec2& p, const std::vector<Vec2>& region_corners) {
+  return std::any_of(region_corners.begin(), region_corners.end(),
+                     [&](const Vec2& c) { return (c - p).squaredNorm() < 1e-18; });
+}
+
+// The smallest corner angle, region corners excepted (merging cannot change those).
 double smallest_angle(const std::vector<Vec2>& poly, const std::vector<Vec2>& region_corners) {
   double smallest = 180.0;
   const size_t n = poly.size();
-  for (size_t k = 0; k < n; ++k) {
-    const Vec2& p = poly[k];
-    const bool region_corner = std::any_of(region_corners.begin(), region_corners.end(),
-                                           [&](const Vec2& c) { return (c - p).squaredNorm() < 1e-18; });
-    if (region_corner) continue;  // merging cannot change the region's own corners
-    const Vec2 a = (poly[(k + n - 1) % n] - p).normalized(), b = (poly[(k + 1) % n] - p).normalized();
-    double angle = std::acos(std::clamp(a.dot(b), -1.0, 1.0)) * 180.0 / M_PI;
-    if (cross(poly[(k + n - 1) % n], p, poly[(k + 1) % n]) < 0.0) angle = 360.0 - angle;  // reflex corner
-    smallest = std::min(smallest, angle);
-  }
+  for (size_t k = 0; k < n; ++k)
+    if (!is_region_corner(poly[k], region_corners))
+      smallest = std::min(smallest, corner_angle(poly[(k + n - 1) % n], poly[k], poly[(k + 1) % n]));
   return smallest;
+}
+
+// The sharpest corner below min_angle (region corners excepted), or NaN when none is.
+Vec2 sharpest_corner(const std::vector<Vec2>& poly, const std::vector<Vec2>& region_corners, double min_angle) {
+  Vec2 sharpest = Vec2::Constant(std::numeric_limits<double>::quiet_NaN());
+  double smallest = min_angle;
+  const size_t n = poly.size();
+  for (size_t k = 0; k < n; ++k) {
+    if (is_region_corner(poly[k], region_corners)) continue;
+    const double angle = corner_angle(poly[(k + n - 1) % n], poly[k], poly[(k + 1) % n]);
+    if (angle < smallest) {
+      smallest = angle;
+      sharpest = poly[k];
+    }
+  }
+  return sharpest;
 }
 
 // Distinct exact points can round to doubles a few ulps apart (three joints nearly
@@ -147,6 +171,19 @@ bool mergeable(Arrangement::Face_const_handle f, Arrangement::Face_const_handle 
     runs += shared[k] && !shared[(k + shared.size() - 1) % shared.size()];
   }
   return runs == 1 && shared_vertices(f, g) == edges + 1;
+}
+
+// The shortest edge a face shares with another face of the region (edges on the
+// region's outline cannot be merged away).
+double shortest_inside_edge(Arrangement::Face_const_handle f) {
+  double shortest = 1e300;
+  auto he = f->outer_ccb();
+  const auto start = he;
+  do {
+    if (!he->twin()->face()->is_unbounded() && he->twin()->face()->data() == 1)
+      shortest = std::min(shortest, (to_vec(he->target()->point()) - to_vec(he->source()->point())).norm());
+  } while (++he != start);
+  return shortest;
 }
 
 // A sliver that shared two edges with its neighbour leaves, once merged across one,
@@ -220,6 +257,7 @@ std::vector<std::vector<Vec2>> cut_region(const RegionInput& region, const MeshS
   // Merge slivers into the inside neighbour across their longest shared edge, round by
   // round until none is left (a merge can leave a new, larger sliver next door).
   const double min_area = settings.min_area_ratio * block_size * block_size;
+  const double min_edge = settings.min_edge_ratio * block_size;
   for (int round = 0; round < 50; ++round) {
     std::vector<Arrangement::Halfedge_handle> to_remove;
     std::vector<Arrangement::Face_handle> touched;
@@ -227,7 +265,9 @@ std::vector<std::vector<Vec2>> cut_region(const RegionInput& region, const MeshS
       if (f->is_unbounded() || f->data() != 1) continue;
       if (std::find(touched.begin(), touched.end(), f) != touched.end()) continue;
       const std::vector<Vec2> poly = face_polygon(f);
-      if (signed_area(poly) >= min_area && smallest_angle(poly, outline) >= settings.min_angle) continue;
+      const bool short_edged = shortest_inside_edge(f) < min_edge;
+      if (!short_edged && signed_area(poly) >= min_area && smallest_angle(poly, outline) >= settings.min_angle)
+        continue;
       // The neighbour: across an edge of at least a quarter of the sliver's longest
       // edge (so the merge removes the thin direction), the smallest such neighbour (so
       // merges do not snowball into one giant block), within the size cap.
@@ -240,14 +280,27 @@ std::vector<std::vector<Vec2>> cut_region(const RegionInput& region, const MeshS
       // Second tier, when no neighbour passes: any edge, four times the size cap; third,
       // no cap at all, since a sliver left alone is worse than a large block. Going
       // uncapped at once made merges snowball when many blocks count as slivers.
+      // A sharp corner is removed by merging across one of the two edges that form it;
+      // any other merge keeps the corner, and the grown block is a sliver again (a joint
+      // running at 1 degree to the ground surface snowballed into a 93-corner block).
+      // Those two edges are tried first, through all three tiers.
+      const Vec2 corner = sharpest_corner(poly, outline, settings.min_angle);
+      const bool sharp = corner.allFinite();
       Arrangement::Halfedge_handle best;
       double best_area = 1e300;
-      for (int tier = 0; tier < 3 && best_area == 1e300; ++tier) {
+      for (int stage = sharp ? 0 : 3; stage < 6 && best_area == 1e300; ++stage) {
+        const int tier = stage % 3;
+        const bool at_corner = stage < 3;
         do {
           auto other = he->twin()->face();
           const double length = (to_vec(he->target()->point()) - to_vec(he->source()->point())).norm();
           if (other->is_unbounded() || other->data() != 1 || other == f) continue;
-          if (tier == 0 && length < 0.25 * longest) continue;
+          if (at_corner && (to_vec(he->source()->point()) - corner).squaredNorm() > 1e-18 &&
+              (to_vec(he->target()->point()) - corner).squaredNorm() > 1e-18)
+            continue;
+          // A block that is only short-edged merges across its short edge, which removes it.
+          if (short_edged && length >= min_edge) continue;
+          if (!short_edged && !at_corner && tier == 0 && length < 0.25 * longest) continue;
           if (std::find(touched.begin(), touched.end(), other) != touched.end()) continue;
           const double other_area = signed_area(face_polygon(other));
           const double cap = tier == 2 ? 1e300 : (tier == 0 ? 1.0 : 4.0) * kMaxMergedAreaRatio * block_size * block_size;
@@ -287,7 +340,7 @@ std::vector<std::vector<Vec2>> cut_region(const RegionInput& region, const MeshS
     stats.smallest_area = std::min(stats.smallest_area, area);
     const double angle = smallest_angle(poly, outline);
     stats.smallest_angle = std::min(stats.smallest_angle, angle);
-    if (area < min_area || angle < settings.min_angle) ++stats.remaining_slivers;
+    if (area < min_area || angle < settings.min_angle || shortest_inside_edge(f) < min_edge) ++stats.remaining_slivers;
     blocks.push_back(std::move(poly));
   }
   stats.block_count += static_cast<int>(blocks.size());
