@@ -51,6 +51,13 @@ struct SimulationOptions {
 
   // Plane strain (default, long slopes) or plane stress elasticity.
   bool plane_strain = true;
+
+  // Solve by conjugate gradients preconditioned with the last Cholesky factor while
+  // that is cheaper than refactorising (forward/sparse_system.hpp). Off by default: on
+  // Vajont section IV the open-close passes change hundreds of contacts at once, CG
+  // converged in only 26 % of its attempts and the run took 1.36x as long
+  // (docs/performance.md). false refactorises on every pass, as published DDA codes do.
+  bool reuse_factorization = false;
 };
 
 // Returns an empty string when the options are usable, else "key: problem".

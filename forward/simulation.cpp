@@ -135,7 +135,9 @@ SimulationResult simulate(const Scene& scene, const SimulationHooks& hooks) {
   std::vector<Contact> contacts, saved;
   BlockSparseMatrix k;
   Eigen::VectorXd f, d;
-  SparseSolver solver;
+  SolverOptions solver_options;
+  solver_options.reuse_factorization = options.reuse_factorization;
+  SparseSolver solver(solver_options);
   StepProfile& profile = summary.profile;
   RunCounters& run = summary.run;
   run.smallest_step = scene.max_step;

@@ -1,6 +1,7 @@
 #include "forward/sparse_system.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <numeric>
 
@@ -33,7 +34,7 @@ void BlockSparseMatrix::add(int a, int b, const Mat6& m) {
     off_diagonal[it->second] += m;
 }
 
-SparseSolver::SparseSolver() {
+SparseSolver::SparseSolver(const SolverOptions& options) : options_(options) {
   cholmod_start(&common_);
   common_.print = 0;
   common_.error_handler = nullptr;
@@ -89,31 +90,22 @@ bool SparseSolver::solve(const BlockSparseMatrix& k, const Eigen::VectorXd& rhs,
   }
   ap[n] = pos;
 
-  const bool same_pattern = factor_ && static_cast<int>(pattern_columns_.size()) == n + 1 &&
-                            std::equal(ap, ap + n + 1, pattern_columns_.begin()) &&
-                            std::equal(ai, ai + pos, pattern_rows_.begin());
-  if (!same_pattern) {
-    if (factor_) cholmod_free_factor(&factor_, &common_);
-    factor_ = cholmod_analyze(a, &common_);
-    pattern_columns_.assign(ap, ap + n + 1);
-    pattern_rows_.assign(ai, ai + pos);
+  const bool warm = options_.reuse_factorization && factor_ != nullptr && static_cast<int>(factor_->n) == n &&
+                    last_solution_.size() == n;
+  if (warm) {
+    x = last_solution_;
+    int iterations = 0;
+    const bool converged = preconditioned_cg(a, rhs, x, iterations);
+    if (stats) stats->cg_iterations = iterations;
+    if (converged && x.allFinite()) {
+      cholmod_free_sparse(&a, &common_);
+      last_solution_ = x;
+      return true;
+    }
   }
-  if (stats) stats->reused_analysis = same_pattern;
-  bool ok = factor_ != nullptr && cholmod_factorize(a, factor_, &common_) != 0;
-  if (ok && (common_.status == CHOLMOD_NOT_POSDEF || factor_->minor < static_cast<size_t>(n))) {
-    ok = false;
-    reason = "the system matrix is not positive definite (pivot " + std::to_string(factor_->minor / 6) +
-             " of the free blocks)";
-  } else if (!ok) {
-    reason = "CHOLMOD factorisation failed (status " + std::to_string(common_.status) + ")";
-  }
+  const bool ok = refactorize(a, n, reason, stats);
   cholmod_free_sparse(&a, &common_);
-  if (!ok) {
-    // Force a fresh analysis next time: the failed factor may be in an odd state.
-    cholmod_free_factor(&factor_, &common_);
-    pattern_columns_.clear();
-    return false;
-  }
+  if (!ok) return false;
 
   cholmod_dense* b = cholmod_allocate_dense(n, 1, n, CHOLMOD_REAL, &common_);
   std::copy(rhs.data(), rhs.data() + n, static_cast<double*>(b->x));
@@ -130,7 +122,103 @@ bool SparseSolver::solve(const BlockSparseMatrix& k, const Eigen::VectorXd& rhs,
     reason = "the solution has non-finite values (ill-conditioned system: penalty too stiff?)";
     return false;
   }
+  last_solution_ = x;
   return true;
+}
+
+bool SparseSolver::refactorize(cholmod_sparse* a, int n, std::string& reason, SolveStats* stats) {
+  const auto start = std::chrono::steady_clock::now();
+  const auto* ap = static_cast<const int*>(a->p);
+  const auto* ai = static_cast<const int*>(a->i);
+  const int pos = ap[n];
+  const bool same_pattern = factor_ && static_cast<int>(pattern_columns_.size()) == n + 1 &&
+                            std::equal(ap, ap + n + 1, pattern_columns_.begin()) &&
+                            static_cast<int>(pattern_rows_.size()) == pos &&
+                            std::equal(ai, ai + pos, pattern_rows_.begin());
+  if (!same_pattern) {
+    if (factor_) cholmod_free_factor(&factor_, &common_);
+    factor_ = cholmod_analyze(a, &common_);
+    pattern_columns_.assign(ap, ap + n + 1);
+    pattern_rows_.assign(ai, ai + pos);
+  }
+  if (stats) {
+    stats->reused_analysis = same_pattern;
+    stats->refactorized = true;
+  }
+  bool ok = factor_ != nullptr && cholmod_factorize(a, factor_, &common_) != 0;
+  if (ok && (common_.status == CHOLMOD_NOT_POSDEF || factor_->minor < static_cast<size_t>(n))) {
+    ok = false;
+    reason = "the system matrix is not positive definite (pivot " + std::to_string(factor_->minor / 6) +
+             " of the free blocks)";
+  } else if (!ok) {
+    reason = "CHOLMOD factorisation failed (status " + std::to_string(common_.status) + ")";
+  }
+  if (!ok) {
+    // Force a fresh analysis next time: the failed factor may be in an odd state.
+    cholmod_free_factor(&factor_, &common_);
+    pattern_columns_.clear();
+    last_solution_.resize(0);
+    return false;
+  }
+  factor_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return true;
+}
+
+bool SparseSolver::preconditioned_cg(cholmod_sparse* a, const Eigen::VectorXd& rhs, Eigen::VectorXd& x,
+                                     int& iterations) {
+  const auto start = std::chrono::steady_clock::now();
+  const int n = static_cast<int>(rhs.size());
+  // Iterations are worth it while they cost less than a factorisation; the first
+  // attempts, before any iteration has been timed, may use the full allowance.
+  int allowed = options_.max_iterations;
+  if (iteration_seconds_ > 0.0)
+    allowed = std::min(allowed, static_cast<int>(factor_seconds_ / iteration_seconds_));
+  if (allowed < 1) return false;
+
+  cholmod_dense* xd = cholmod_allocate_dense(n, 1, n, CHOLMOD_REAL, &common_);
+  cholmod_dense* rd = cholmod_allocate_dense(n, 1, n, CHOLMOD_REAL, &common_);
+  auto* xp = static_cast<double*>(xd->x);
+  auto* rp = static_cast<double*>(rd->x);
+  Eigen::Map<Eigen::VectorXd> r(rp, n);
+  // r = F - K x
+  std::copy(x.data(), x.data() + n, xp);
+  std::copy(rhs.data(), rhs.data() + n, rp);
+  double minus_one[2] = {-1.0, 0.0}, one[2] = {1.0, 0.0}, zero[2] = {0.0, 0.0};
+  cholmod_sdmult(a, 0, minus_one, one, xd, rd, &common_);
+  const double target = options_.tolerance * rhs.norm();
+  Eigen::VectorXd p, z, q(n);
+  double rz = 0.0;
+  bool converged = r.norm() <= target;
+  iterations = 0;
+  while (!converged && iterations < allowed) {
+    cholmod_dense* zd = cholmod_solve(CHOLMOD_A, factor_, rd, &common_);
+    if (zd == nullptr) break;
+    z = Eigen::Map<Eigen::VectorXd>(static_cast<double*>(zd->x), n);
+    cholmod_free_dense(&zd, &common_);
+    const double rz_new = r.dot(z);
+    p = iterations == 0 ? z : Eigen::VectorXd(z + (rz_new / rz) * p);
+    rz = rz_new;
+    // q = K p
+    std::copy(p.data(), p.data() + n, xp);
+    cholmod_dense* qd = cholmod_allocate_dense(n, 1, n, CHOLMOD_REAL, &common_);
+    cholmod_sdmult(a, 0, one, zero, xd, qd, &common_);
+    q = Eigen::Map<Eigen::VectorXd>(static_cast<double*>(qd->x), n);
+    cholmod_free_dense(&qd, &common_);
+    const double pq = p.dot(q);
+    ++iterations;
+    if (!(pq > 0.0)) break;  // not positive definite along p: let the factorisation decide
+    const double alpha = rz / pq;
+    x += alpha * p;
+    r -= alpha * q;
+    converged = r.norm() <= target;
+  }
+  cholmod_free_dense(&xd, &common_);
+  cholmod_free_dense(&rd, &common_);
+  if (iterations > 0) {
+    const double per = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() / iterations;
+    iteration_seconds_ = iteration_seconds_ > 0.0 ? 0.9 * iteration_seconds_ + 0.1 * per : per;
+  }
+  return converged;
 }
 
 }  // namespace ddafit

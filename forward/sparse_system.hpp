@@ -27,6 +27,23 @@ struct BlockSparseMatrix {
 
 struct SolveStats {
   bool reused_analysis = false;
+  bool refactorized = false;  // false: solved by conjugate gradients on an older factor
+  int cg_iterations = 0;
+};
+
+// How SparseSolver reuses its work between solves.
+struct SolverOptions {
+  // Solve with conjugate gradients preconditioned by the last Cholesky factor, and
+  // refactorise only when they would cost more than a factorisation. Between open-close
+  // passes and between steps only a few contact springs change, which moves a few
+  // eigenvalues of the preconditioned system away from 1, so a handful of iterations
+  // gives the direct solution's accuracy (docs/performance.md).
+  bool reuse_factorization = false;
+  // Converged when |K x - F| <= tolerance |F|. Displacements are then exact to about
+  // 1e-10 of a step's motion, far below the contact tolerance (1e-7 of it).
+  double tolerance = 1e-10;
+  // Never more iterations than this, whatever the measured costs say.
+  int max_iterations = 60;
 };
 
 // Owns a CHOLMOD workspace and the last factor. The symbolic analysis (fill-reducing
@@ -34,7 +51,7 @@ struct SolveStats {
 // consecutive open-close iterations and steps with the same contacts only refactorise.
 class SparseSolver {
  public:
-  SparseSolver();
+  explicit SparseSolver(const SolverOptions& options = {});
   ~SparseSolver();
   SparseSolver(const SparseSolver&) = delete;
   SparseSolver& operator=(const SparseSolver&) = delete;
@@ -45,8 +62,17 @@ class SparseSolver {
              std::string& reason, SolveStats* stats = nullptr);
 
  private:
+  // Conjugate gradients on K with the stored factor as preconditioner, starting from x;
+  // false when they do not converge within the affordable iterations.
+  bool preconditioned_cg(cholmod_sparse* a, const Eigen::VectorXd& rhs, Eigen::VectorXd& x, int& iterations);
+  bool refactorize(cholmod_sparse* a, int n, std::string& reason, SolveStats* stats);
+
+  SolverOptions options_;
   cholmod_common common_;
   cholmod_factor* factor_ = nullptr;
+  Eigen::VectorXd last_solution_;
+  double factor_seconds_ = 0.0;     // wall time of the last factorisation
+  double iteration_seconds_ = 0.0;  // running mean wall time of one CG iteration
   std::vector<int> pattern_columns_;
   std::vector<int> pattern_rows_;
 };

@@ -83,6 +83,7 @@ inline constexpr ControlKey kControlKeys[] = {
     {"search_distance_factor", &SimulationOptions::search_distance_factor},
     {"settle_passes", &SimulationOptions::settle_passes},
     {"plane_strain", &SimulationOptions::plane_strain},
+    {"reuse_factorization", &SimulationOptions::reuse_factorization},
 };
 
 }  // namespace ddafit::io
