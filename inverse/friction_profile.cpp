@@ -52,14 +52,13 @@ BoundingFriction profile_friction(Objective& objective, const Study& study, cons
   f.available = true;
   f.mu_best = residual_friction(study, parameter, f.peak_angle, f.best_value);
 
-  std::vector<double> scan;
-  for (int k = 0; k < points; ++k) scan.push_back(p.lower + (p.upper - p.lower) * k / (points - 1));
-  scan.push_back(f.best_value);
   std::vector<bool> others;
   for (size_t j = 0; j < study.parameters.size(); ++j)
     others.push_back(!study.parameters[j].discrete() && static_cast<int>(j) != parameter);
   const bool any_other = std::find(others.begin(), others.end(), true) != others.end();
-  for (double value : scan) {
+  const auto add_point = [&](double value) {
+    for (const ProfilePoint& q : f.profile)
+      if (q.value == value) return;
     std::vector<double> x = best;
     x[parameter] = value;
     ProfilePoint pt;
@@ -69,23 +68,39 @@ BoundingFriction profile_friction(Objective& objective, const Study& study, cons
       pt.values = r.best;
       pt.chi2 = r.chi2;
     } else {
-      const Evaluation e = objective.evaluate(x);
       pt.values = x;
-      pt.chi2 = e.chi2;
+      pt.chi2 = objective.evaluate(x).chi2;
     }
     pt.failed = pt.chi2 >= kFailedMisfit;
     pt.mu = residual_friction(study, parameter, f.peak_angle, value);
-    f.profile.push_back(pt);
+    const auto at = std::lower_bound(f.profile.begin(), f.profile.end(), value,
+                                     [](const ProfilePoint& a, double v) { return a.value < v; });
+    f.profile.insert(at, pt);
+  };
+  for (int k = 0; k < points; ++k) add_point(p.lower + (p.upper - p.lower) * k / (points - 1));
+  add_point(f.best_value);
+
+  // Bisect each crossing of Delta chi^2 = 1 and 4 down to one resolution, so the range
+  // does not depend on the scan spacing (about log2(spacing / resolution) runs each).
+  for (int extra = 0; extra < 48; ++extra) {
+    size_t at_min = 0;
+    for (size_t k = 1; k < f.profile.size(); ++k)
+      if (f.profile[k].chi2 < f.profile[at_min].chi2) at_min = k;
+    const double chi2_min = f.profile[at_min].chi2;
+    f.delta1 = range_of(f.profile, at_min, chi2_min, 1.0);
+    f.delta4 = range_of(f.profile, at_min, chi2_min, 4.0);
+    double split = NAN;
+    for (size_t k = 0; k + 1 < f.profile.size() && std::isnan(split); ++k) {
+      const ProfilePoint &a = f.profile[k], &b = f.profile[k + 1];
+      const bool crosses = (a.chi2 - chi2_min <= 1.0) != (b.chi2 - chi2_min <= 1.0) ||
+                           (a.chi2 - chi2_min <= 4.0) != (b.chi2 - chi2_min <= 4.0);
+      if (crosses && b.value - a.value > 1.5 * p.resolution)
+        split = a.value + std::round(0.5 * (b.value - a.value) / p.resolution) * p.resolution;
+    }
+    if (std::isnan(split)) break;
+    add_point(split);
   }
-  std::sort(f.profile.begin(), f.profile.end(), [](const auto& a, const auto& b) { return a.value < b.value; });
-  f.profile.erase(std::unique(f.profile.begin(), f.profile.end(),
-                              [](const auto& a, const auto& b) { return a.value == b.value; }),
-                  f.profile.end());
-  size_t at_min = 0;
-  for (size_t k = 1; k < f.profile.size(); ++k)
-    if (f.profile[k].chi2 < f.profile[at_min].chi2) at_min = k;
   for (ProfileRange* r : {&f.delta1, &f.delta4}) {
-    *r = range_of(f.profile, at_min, f.profile[at_min].chi2, r == &f.delta1 ? 1.0 : 4.0);
     // mu falls as degradation (or roughness) rises: the low mu belongs to the high value.
     r->mu_low = residual_friction(study, parameter, f.peak_angle, r->high);
     r->mu_high = residual_friction(study, parameter, f.peak_angle, r->low);

@@ -89,6 +89,15 @@ InversionSummary run_inversion(const Study& study, const InversionOptions& optio
     out.friction = profile_friction(objective, study, best.best.values, profiled, scan, study.profile.reoptimize,
                                     per_scan_point);
   }
+  // ddafit keeps the best point it saw: a profile point may beat the fit (the fit stops
+  // within step_tolerance resolutions of the minimum, the scan may land closer).
+  for (const ProfilePoint& pt : out.friction.profile) {
+    if (pt.failed || pt.chi2 >= best.best.chi2) continue;
+    best.best = objective.evaluate(pt.values);
+    best.history.clear();
+    out.friction.best_value = pt.value;
+    out.friction.mu_best = pt.mu;
+  }
   if (!best.best.failed) out.covariance = covariance_at(objective, study, best.best.values, profiled);
 
   // The best fit's history for the velocity-distance curve: from this process, else the

@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <algorithm>
 #include <limits>
 
 namespace ddafit::inverse {
@@ -101,6 +102,7 @@ Evaluation Objective::evaluate(const std::vector<double>& values) {
            " because the forward run failed: " + e.message);
   seen_[key] = log_.size();
   log_.push_back(std::move(e));
+  best_chi2_ = std::min(best_chi2_, log_.back().chi2);
   if (best_ < 0 || log_.back().chi2 < log_[best_].chi2) {
     best_ = static_cast<long>(log_.size()) - 1;
     best_history_ = std::move(history);
@@ -119,7 +121,7 @@ Progress Objective::progress() const {
   p.evaluations = static_cast<long>(log_.size());
   p.cached = cached_;
   p.run = run_;
-  p.best_chi2 = best_ >= 0 ? log_[best_].chi2 : std::numeric_limits<double>::quiet_NaN();
+  p.best_chi2 = best_chi2_;
   p.mean_run_seconds = run_ > 0 ? seconds_run_ / run_ : (cached_ > 0 ? seconds_cached_ / cached_ : 0.0);
   p.planned = planned_;
   p.eta_seconds = std::max(0L, planned_ - p.evaluations) * p.mean_run_seconds;

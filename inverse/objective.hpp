@@ -5,6 +5,7 @@
 #pragma once
 
 #include <functional>
+#include <limits>
 #include <map>
 #include <string>
 #include <vector>
@@ -35,7 +36,7 @@ struct Progress {
   long evaluations = 0;  // objective calls that needed a distinct point
   long cached = 0;       // of which served from the cache file
   long run = 0;          // of which forward runs made by this process
-  double best_chi2 = 0.0;
+  double best_chi2 = 0.0;  // over the whole study so far
   double mean_run_seconds = 0.0;
   long planned = 0;      // evaluations the study plans (levels x budget + profile)
   double eta_seconds = 0.0;
@@ -74,6 +75,7 @@ class Objective {
   std::vector<Evaluation> log_;
   long best_ = -1;
   std::vector<HistoryRow> best_history_;
+  double best_chi2_ = std::numeric_limits<double>::infinity();  // over the whole study, for progress
   long cached_ = 0, run_ = 0, planned_ = 0;
   double seconds_run_ = 0.0, seconds_cached_ = 0.0;
 };

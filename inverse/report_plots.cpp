@@ -46,13 +46,15 @@ bool plot_report(const std::string& dir, const Study& study, const InversionSumm
     for (const ProfilePoint& p : f.profile)
       if (!p.failed) dat.print("{:.17g} {:.17g} {:.17g}\n", p.value, p.chi2 - chi2_min, p.mu);
     dat.close();
-    gp.print("set output '{}'\nset key top left\n", path("profile.png"));
-    gp.print("set xlabel '{}'\nset ylabel 'chi2 - chi2_min'\n", study.parameters[f.parameter].name);
+    gp.print("set output '{}'\nset key top left noenhanced\n", path("profile.png"));
+    // chi^2 on a log axis: the Delta = 1 and 4 levels stay visible beside a steep profile.
+    gp.print("set xlabel '{}' noenhanced\nset ylabel 'chi2' noenhanced\nset logscale y\n",
+             study.parameters[f.parameter].name);
     gp.print("set title 'mu_b = {:.4f} at the best fit; Delta chi2 <= 4: mu_b in [{:.4f}, {:.4f}]' noenhanced\n",
              f.mu_best, f.delta4.mu_low, f.delta4.mu_high);
-    gp.print("plot '{}' using 1:2 with linespoints lw 2 pt 7 title 'profile', 1 dt 2 lw 2 title 'Delta chi2 = 1', "
-             "4 dt 3 lw 2 title 'Delta chi2 = 4'\n",
-             path("profile.dat"));
+    gp.print("plot '{}' using 1:($2+{:.17g}) with linespoints lw 2 pt 7 title 'profile', {:.17g} dt 2 lw 2 "
+             "title 'chi2_min + 1', {:.17g} dt 3 lw 2 title 'chi2_min + 4'\nunset logscale y\n",
+             path("profile.dat"), chi2_min, chi2_min + 1.0, chi2_min + 4.0);
   }
 
   if (s.best_level >= 0) {
