@@ -49,15 +49,24 @@ CovarianceReport covariance_at(Objective& objective, const Study& study, const s
       c.warnings.push_back(study.parameters[s.index[k]].name +
                            " changes no residual by one resolution step here: the data do not constrain it");
   const Eigen::VectorXd sv = Eigen::JacobiSVD<Eigen::MatrixXd>(jac).singularValues();
-  c.condition_number = sv.size() && sv(sv.size() - 1) > 0.0 ? sv(0) / sv(sv.size() - 1) : INFINITY;
-  if (!(c.condition_number < 1e8))
+  // Fewer rows than columns: J has fewer singular values than parameters, rank < n.
+  const bool square_enough = jac.rows() >= jac.cols() && sv.size() > 0;
+  c.condition_number = square_enough && sv(sv.size() - 1) > 0.0 ? sv(0) / sv(sv.size() - 1) : INFINITY;
+  // ceres::Covariance drops exactly-zero eigenvalues silently (a pseudo-inverse), so rank
+  // deficiency is judged here, on the same test Ceres applies to the non-zero ones.
+  if (!(c.condition_number < 1e6)) {
+    c.warnings.push_back("the weighted Jacobian is rank deficient (condition number " +
+                         exact_text(c.condition_number) + "): no covariance; the data do not resolve every parameter");
+    return c;
+  }
+  if (c.condition_number > 1e3)
     c.warnings.push_back("the weighted Jacobian is ill-conditioned (condition number " +
-                         exact_text(c.condition_number) + "): some combination of parameters is not resolved");
+                         exact_text(c.condition_number) + "): some combination of parameters is poorly resolved");
 
   ceres::Covariance::Options options;
   options.algorithm_type = ceres::DENSE_SVD;  // reports rank deficiency instead of failing obscurely
   options.null_space_rank = 0;
-  options.min_reciprocal_condition_number = 1e-12;
+  options.min_reciprocal_condition_number = 1e-12;  // = (1e6 condition of J)^-2, as above
   ceres::Covariance covariance(options);
   std::vector<std::pair<const double*, const double*>> blocks{{u.data(), u.data()}};
   if (!covariance.Compute(blocks, &problem)) {

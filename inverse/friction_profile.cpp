@@ -13,13 +13,16 @@ namespace ddafit::inverse {
 namespace {
 
 // Walks from the minimum to each side until chi^2 rises above min + threshold and
-// interpolates linearly between the last point inside and the first outside.
+// interpolates between the last point inside and the first outside, linearly in
+// sqrt(Delta chi^2): near a minimum chi^2 is quadratic, so sqrt(Delta) is linear in the
+// distance from it, and the crossing is exact even across a bracket wider than the range.
 ProfileRange range_of(const std::vector<ProfilePoint>& pts, size_t at_min, double chi2_min, double threshold) {
   ProfileRange r;
   r.threshold = threshold;
   const double level = chi2_min + threshold;
   const auto cross = [&](size_t in, size_t out) {
-    const double t = (level - pts[in].chi2) / (pts[out].chi2 - pts[in].chi2);
+    const double a = std::sqrt(std::max(0.0, pts[in].chi2 - chi2_min)), b = std::sqrt(pts[out].chi2 - chi2_min);
+    const double t = (std::sqrt(threshold) - a) / (b - a);
     return pts[in].value + t * (pts[out].value - pts[in].value);
   };
   size_t k = at_min;
