@@ -97,7 +97,18 @@ double residual_friction(const Study& study, int parameter, double peak_angle, d
 InversionSummary run_inversion(const Study& study, const InversionOptions& options,
                                const ForwardModel& forward = run_forward);
 
-// The parts, for tests and for `ddafit scan`.
+// A 1-D scan of one parameter from lower to upper, the others at their starts (the first
+// level), through the same cache rules as run_inversion (scan.cpp).
+struct ScanResult {
+  int parameter = -1;
+  std::vector<Evaluation> points;
+  long cached = 0, run = 0;
+  std::string cache_path;
+};
+ScanResult run_scan(const Study& study, const InversionOptions& options, const std::string& parameter, int points,
+                    const ForwardModel& forward = run_forward);
+
+// The parts, for tests.
 BoundingFriction profile_friction(Objective& objective, const Study& study, const std::vector<double>& best,
                                   int parameter, int points, bool reoptimize, int budget);
 CovarianceReport covariance_at(Objective& objective, const Study& study, const std::vector<double>& best,

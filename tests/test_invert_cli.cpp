@@ -115,6 +115,21 @@ TEST(InvertCli, CheckValidatesTheVajontStudyWithoutRunning) {
   EXPECT_FALSE(fs::exists(dir / "out")) << "--check runs nothing and writes nothing";
 }
 
+TEST(InvertCli, ScanTabulatesChi2AndReusesItsCacheOnResume) {
+  const fs::path dir = fresh_dir("scan");
+  const std::string args = "scan " + kCases + "/inverse/twin_study.yaml --parameter joint_roughness --points 3 --out " +
+                           (dir / "out").string();
+  const CommandResult first = ddafit(args, dir / "1");
+  ASSERT_EQ(first.code, 0) << first.err;
+  std::ifstream csv(dir / "out" / "scan.csv");
+  int lines = 0;
+  for (std::string line; std::getline(csv, line);) ++lines;
+  EXPECT_EQ(lines, 4);  // header + 0, 6, 12 deg
+  const CommandResult again = ddafit(args + " --resume", dir / "2");
+  ASSERT_EQ(again.code, 0) << again.err;
+  EXPECT_NE(again.err.find("0 run, 3 cached"), std::string::npos) << again.err;
+}
+
 long cached_rows(const fs::path& db) {
   sqlite3* h = nullptr;
   long n = -1;

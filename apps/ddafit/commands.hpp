@@ -60,6 +60,15 @@ struct InvertArgs {
 };
 int run_invert(const InvertArgs& args);
 
+struct ScanArgs {
+  std::string study;
+  std::string parameter;  // a continuous parameter's name in the study
+  int points = 11;
+  std::string out = "ddafit-scan";
+  bool resume = false;
+};
+int run_scan(const ScanArgs& args);
+
 struct VerifyArgs {
   std::string only;  // run only checks whose name contains this
   bool stability_map = false;  // print the incline stability map instead

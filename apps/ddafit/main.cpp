@@ -57,6 +57,14 @@ int main(int argc, char** argv) {
   invert->add_flag("--quiet", inv.quiet, "print nothing but errors");
   invert->add_flag("--check", inv.check, "read and check the study and its scene, print the plan, run nothing");
 
+  ScanArgs sc;
+  CLI::App* scan = app.add_subcommand("scan", "chi2 along one study parameter, the others at their starts");
+  scan->add_option("study", sc.study, "study file (YAML)")->required();
+  scan->add_option("--parameter", sc.parameter, "the parameter to scan (its name in the study)")->required();
+  scan->add_option("--points", sc.points, "points from lower to upper")->capture_default_str()->check(CLI::Range(2, 10000));
+  scan->add_option("--out", sc.out, "output folder: scan.csv and the evaluation cache")->capture_default_str();
+  scan->add_flag("--resume", sc.resume, "reuse the evaluations cached in the output folder");
+
   VerifyArgs ver;
   CLI::App* verify = app.add_subcommand("verify", "run the built-in analytic verification suite");
   verify->add_option("--only", ver.only, "run only the checks whose name contains this text");
@@ -79,5 +87,6 @@ int main(int argc, char** argv) {
   if (*stable) return run_stable(st);
   if (*plot) return run_plot(pl);
   if (*invert) return run_invert(inv);
+  if (*scan) return run_scan(sc);
   return kExitBadInput;
 }
