@@ -61,6 +61,7 @@ InversionSummary run_inversion(const Study& study, const InversionOptions& optio
     if (options.on_log) options.on_log(line);
   };
   const int budget = options.budget > 0 ? options.budget : study.method.budget;
+  out.budget = budget;
   const std::vector<std::vector<double>> starts = level_starts(study);
   const int profiled = profile_parameter(study);
   const int scan = profiled >= 0 ? study.profile.points : 0;
@@ -107,9 +108,10 @@ InversionSummary run_inversion(const Study& study, const InversionOptions& optio
     if (auto hit = cache.find(key); hit && hit->has_history) {
       best.history = std::move(hit->result.history);
     } else {
+      const auto started = std::chrono::steady_clock::now();
       SimulationResult again = forward(study.scene_path, point_overrides(study, best.best.values));
       ++out.history_reruns;
-      cache.store(key, again, 0.0, true);
+      cache.store(key, again, std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count(), true);
       best.history = std::move(again.history);
     }
   }

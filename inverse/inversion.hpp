@@ -84,6 +84,7 @@ struct InversionSummary {
   BoundingFriction friction;
   CovarianceReport covariance;
   long evaluations = 0, cached = 0, run = 0;  // distinct points; from the cache; run now
+  int budget = 0;  // objective calls allowed per fit (the study's, or --budget)
   long history_reruns = 0;  // forward runs repeated only to draw the best fit's curve
   double wall_seconds = 0.0;
   double run_seconds = 0.0;  // of it, in forward runs

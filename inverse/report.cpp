@@ -49,7 +49,7 @@ json report_json(const Study& study, const InversionSummary& s) {
   j["cache"] = s.cache_path;
   j["method"] = {{"optimizer", study.method.optimizer == Optimizer::Ceres ? "ceres" : "nlopt"},
                  {"algorithm", study.method.optimizer == Optimizer::Ceres ? "levenberg_marquardt" : study.method.algorithm},
-                 {"budget", s.levels.empty() ? 0 : study.method.budget},
+                 {"budget", s.budget},
                  {"step_tolerance", study.method.step_tolerance}, {"chi2_tolerance", study.method.chi2_tolerance}};
   j["evaluations_total"] = s.evaluations;
   j["evaluations_cached"] = s.cached;
