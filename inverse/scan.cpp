@@ -16,7 +16,9 @@ ScanResult run_scan(const Study& study, const InversionOptions& options, const s
   if (out.parameter < 0 || study.parameters[out.parameter].discrete())
     throw InversionError(study.path + ": --parameter: '" + parameter + "' is not a continuous parameter of the study");
   if (points < 2) throw InversionError(study.path + ": --points: give at least 2");
-  std::filesystem::create_directories(options.out_dir);
+  std::error_code ec;
+  std::filesystem::create_directories(options.out_dir, ec);
+  if (ec) throw InversionError(options.out_dir + ": --out: cannot create the folder (" + ec.message() + ")");
   out.cache_path = (std::filesystem::path(options.out_dir) / "evaluations.sqlite").string();
   EvaluationCache cache(out.cache_path, options.model_version, scene_input_hash(study));
   if (!options.resume && cache.count() > 0)
