@@ -50,6 +50,25 @@ struct StableArgs {
 };
 int run_stable(const StableArgs& args);
 
+struct InvertArgs {
+  std::string study;
+  std::string out = "ddafit-invert";
+  bool resume = false;  // reuse OUT/evaluations.sqlite
+  int budget = 0;       // objective calls per fit; 0 = the study's method.budget
+  bool quiet = false;
+  bool check = false;   // read and check the study and its scene, print the plan, run nothing
+};
+int run_invert(const InvertArgs& args);
+
+struct ScanArgs {
+  std::string study;
+  std::string parameter;  // a continuous parameter's name in the study
+  int points = 11;
+  std::string out = "ddafit-scan";
+  bool resume = false;
+};
+int run_scan(const ScanArgs& args);
+
 struct VerifyArgs {
   std::string only;  // run only checks whose name contains this
   bool stability_map = false;  // print the incline stability map instead

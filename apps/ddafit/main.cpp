@@ -47,6 +47,24 @@ int main(int argc, char** argv) {
   stable->add_option("--out", st.out, "output folder for stable.json")->capture_default_str();
   stable->add_option("--set", st.sets, "override a scene value, KEY=VALUE (repeatable)");
 
+  InvertArgs inv;
+  CLI::App* invert = app.add_subcommand("invert", "back-analysis: fit scene values to observations (docs/back-analysis.md)");
+  invert->add_option("study", inv.study, "study file (YAML)")->required();
+  invert->add_option("--out", inv.out, "output folder: report and evaluation cache")->capture_default_str();
+  invert->add_flag("--resume", inv.resume, "reuse the evaluations cached in the output folder");
+  invert->add_option("--budget", inv.budget, "objective evaluations per fit (default: the study's method.budget)")
+      ->check(CLI::PositiveNumber);
+  invert->add_flag("--quiet", inv.quiet, "print nothing but errors");
+  invert->add_flag("--check", inv.check, "read and check the study and its scene, print the plan, run nothing");
+
+  ScanArgs sc;
+  CLI::App* scan = app.add_subcommand("scan", "chi2 along one study parameter, the others at their starts");
+  scan->add_option("study", sc.study, "study file (YAML)")->required();
+  scan->add_option("--parameter", sc.parameter, "the parameter to scan (its name in the study)")->required();
+  scan->add_option("--points", sc.points, "points from lower to upper")->capture_default_str()->check(CLI::Range(2, 10000));
+  scan->add_option("--out", sc.out, "output folder: scan.csv and the evaluation cache")->capture_default_str();
+  scan->add_flag("--resume", sc.resume, "reuse the evaluations cached in the output folder");
+
   VerifyArgs ver;
   CLI::App* verify = app.add_subcommand("verify", "run the built-in analytic verification suite");
   verify->add_option("--only", ver.only, "run only the checks whose name contains this text");
@@ -68,5 +86,7 @@ int main(int argc, char** argv) {
   if (*mesh_cmd) return run_mesh(mesh);
   if (*stable) return run_stable(st);
   if (*plot) return run_plot(pl);
+  if (*invert) return run_invert(inv);
+  if (*scan) return run_scan(sc);
   return kExitBadInput;
 }

@@ -1,0 +1,182 @@
+// `ddafit invert`: reads a study, runs the back-analysis (inverse/), prints progress and
+// the result, and leaves the report in --out.
+#include <fmt/format.h>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+
+#include "apps/ddafit/commands.hpp"
+#include "apps/ddafit/exit_codes.hpp"
+#include "inverse/evaluation_cache.hpp"
+#include "inverse/forward_call.hpp"
+#include "inverse/inversion.hpp"
+#include "inverse/report.hpp"
+#include "inverse/study.hpp"
+
+namespace ddafit::app {
+
+namespace {
+
+std::string clock_text(double seconds) {
+  const long s = static_cast<long>(seconds + 0.5);
+  return s >= 3600 ? fmt::format("{}h{:02d}m", s / 3600, (s % 3600) / 60) : fmt::format("{}m{:02d}s", s / 60, s % 60);
+}
+
+// The plan of --check: what would run, without running it.
+void print_plan(const inverse::Study& study, int budget, const std::string& out) {
+  long levels = 1;
+  std::cout << "study " << study.path << "\nscene " << study.scene_path << " (input hash "
+            << inverse::scene_input_hash(study) << ")\n";
+  for (const auto& [k, v] : study.settings) std::cout << "  setting " << k << " = " << v;
+  if (!study.settings.empty()) std::cout << "\n";
+  for (const inverse::Parameter& p : study.parameters) {
+    if (p.discrete()) {
+      levels *= static_cast<long>(p.levels.size());
+      std::string list;
+      for (double v : p.levels) list += (list.empty() ? "" : ", ") + fmt::format("{:g}", v);
+      std::cout << fmt::format("  parameter {} ({}): levels {}\n", p.name, p.key, list);
+    } else {
+      std::cout << fmt::format("  parameter {} ({}): [{:g}, {:g}], start {:g}, resolution {:g}\n", p.name, p.key, p.lower,
+                               p.upper, p.start, p.resolution);
+    }
+  }
+  for (const inverse::Observation& o : study.observations)
+    std::cout << fmt::format("  observation point {} {} {} {:g} +- {:g}\n", o.point, o.quantity,
+                             o.kind == inverse::ObservationKind::AtMost    ? "<="
+                             : o.kind == inverse::ObservationKind::AtLeast ? ">="
+                                                                           : "=",
+                             o.value, o.sigma);
+  const int profiled = inverse::profile_parameter(study);
+  const long scan = profiled >= 0 ? study.profile.points : 0;
+  const long per_point = study.profile.reoptimize ? std::max(1, budget / 2) : 1;
+  std::cout << fmt::format("method {} {}, budget {} per level, {} level(s); profile over {} with {} points\n",
+                           study.method.optimizer == inverse::Optimizer::Ceres ? "ceres" : "nlopt",
+                           study.method.optimizer == inverse::Optimizer::Ceres ? "levenberg_marquardt"
+                                                                               : study.method.algorithm,
+                           budget, levels, profiled >= 0 ? study.parameters[profiled].name : "(none)", scan);
+  std::cout << fmt::format("at most {} evaluations; cache {}/evaluations.sqlite\n", levels * budget + scan * per_point,
+                           out);
+}
+
+}  // namespace
+
+int run_invert(const InvertArgs& args) {
+  inverse::Study study;
+  try {
+    study = inverse::read_study(args.study);
+    inverse::check_study_against_scene(study);
+  } catch (const inverse::StudyError& e) {
+    std::cerr << e.what() << "\n";
+    return kExitBadInput;
+  }
+  const int budget = args.budget > 0 ? args.budget : study.method.budget;
+  if (args.check) {
+    print_plan(study, budget, args.out);
+    return kExitSuccess;
+  }
+  inverse::InversionOptions options;
+  options.out_dir = args.out;
+  options.resume = args.resume;
+  options.budget = args.budget;
+  options.model_version = DDAFIT_VERSION;
+  if (!args.quiet) {
+    options.on_progress = [](const inverse::Progress& p) {
+      std::cerr << fmt::format("\r  evaluation {} of <= {} ({} cached)  best chi2 {:.4g}  {:.1f} s/run  ETA {}   ",
+                               p.evaluations, p.planned, p.cached, p.best_chi2, p.mean_run_seconds,
+                               clock_text(p.eta_seconds))
+                << std::flush;
+    };
+  }
+  options.on_log = [quiet = args.quiet](const std::string& line) {
+    if (!quiet) std::cerr << "\n  note: " << line << "\n";
+  };
+  inverse::InversionSummary summary;
+  try {
+    summary = inverse::run_inversion(study, options);
+  } catch (const inverse::InversionError& e) {
+    std::cerr << e.what() << "\n";
+    return kExitBadInput;
+  } catch (const inverse::CacheError& e) {
+    std::cerr << "\n" << e.what() << "\n";
+    return kExitRunFailed;
+  }
+  if (!args.quiet) std::cerr << "\n";
+  try {
+    for (const std::string& note : inverse::write_report(args.out, study, summary)) std::cerr << "note: " << note << "\n";
+  } catch (const std::exception& e) {
+    std::cerr << args.out << ": --out: " << e.what() << "\n";
+    return kExitBadInput;
+  }
+  const inverse::LevelFit& best = summary.levels[summary.best_level];
+  if (best.best.failed) {
+    std::cerr << study.path << ": every forward run failed; the last reason: " << best.best.message << "\n";
+    return kExitRunFailed;
+  }
+  if (!args.quiet) {
+    std::cout << fmt::format("{} evaluations ({} run, {} cached), {:.1f} s\n", summary.evaluations, summary.run,
+                             summary.cached, summary.wall_seconds);
+    for (size_t l = 0; l < summary.levels.size(); ++l) {
+      std::string line = fmt::format("level {}{}:", l + 1, static_cast<int>(l) == summary.best_level ? " (best)" : "");
+      for (size_t k = 0; k < study.parameters.size(); ++k)
+        line += fmt::format(" {} = {:.6g}", study.parameters[k].name, summary.levels[l].best.values[k]);
+      std::cout << line << fmt::format("  chi2 = {:.4g} ({})\n", summary.levels[l].best.chi2,
+                                       summary.levels[l].fit.stop_reason);
+    }
+    const inverse::BoundingFriction& f = summary.friction;
+    if (f.available)
+      std::cout << fmt::format("mu_b = {:.4f}; Delta chi2 <= 1: [{:.4f}, {:.4f}]; <= 4: [{:.4f}, {:.4f}]\n", f.mu_best,
+                               f.delta1.mu_low, f.delta1.mu_high, f.delta4.mu_low, f.delta4.mu_high);
+    for (const std::string& w : summary.covariance.warnings) std::cout << "covariance warning: " << w << "\n";
+    std::cout << "wrote " << (std::filesystem::path(args.out) / "report.md").string() << "\n";
+  }
+  return kExitSuccess;
+}
+
+}  // namespace ddafit::app
+
+namespace ddafit::app {
+
+int run_scan(const ScanArgs& args) {
+  inverse::Study study;
+  try {
+    study = inverse::read_study(args.study);
+    inverse::check_study_against_scene(study);
+  } catch (const inverse::StudyError& e) {
+    std::cerr << e.what() << "\n";
+    return kExitBadInput;
+  }
+  inverse::InversionOptions options;
+  options.out_dir = args.out;
+  options.resume = args.resume;
+  options.model_version = DDAFIT_VERSION;
+  options.on_log = [](const std::string& line) { std::cerr << "note: " << line << "\n"; };
+  inverse::ScanResult scan;
+  try {
+    scan = inverse::run_scan(study, options, args.parameter, args.points);
+  } catch (const inverse::InversionError& e) {
+    std::cerr << e.what() << "\n";
+    return kExitBadInput;
+  } catch (const inverse::CacheError& e) {
+    std::cerr << e.what() << "\n";
+    return kExitRunFailed;
+  }
+  // Table to stdout and DIR/scan.csv: the value, chi2, then each observation's simulated value.
+  std::string header = args.parameter + ",chi2";
+  for (const inverse::Observation& o : study.observations) header += "," + o.point + ":" + o.quantity;
+  std::ofstream csv(std::filesystem::path(args.out) / "scan.csv");
+  csv << header << "\n";
+  std::cout << header << "\n";
+  for (const inverse::Evaluation& e : scan.points) {
+    std::string row = fmt::format("{:.10g},{:.6g}", e.values[scan.parameter], e.chi2);
+    for (double v : e.simulated) row += fmt::format(",{:.6g}", v);
+    csv << row << "\n";
+    std::cout << row << "\n";
+  }
+  std::cerr << fmt::format("{} points: {} run, {} cached; wrote {}/scan.csv\n", scan.points.size(), scan.run,
+                           scan.cached, args.out);
+  return kExitSuccess;
+}
+
+}  // namespace ddafit::app

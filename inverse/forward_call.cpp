@@ -1,0 +1,153 @@
+#include "inverse/forward_call.hpp"
+
+#include <yaml-cpp/yaml.h>
+
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <set>
+#include <sstream>
+
+#include "forward/io/scene_reader.hpp"
+
+namespace ddafit::inverse {
+
+SimulationResult run_forward(const std::string& scene_path, const Overrides& overrides) {
+  SimulationResult result;
+  try {
+    const Scene scene = io::read_scene(scene_path, overrides);
+    return simulate(scene);
+  } catch (const io::SceneReadError& e) {
+    result.summary.status = RunStatus::InvalidScene;
+    result.summary.message = e.what();
+  } catch (const std::exception& e) {
+    result.summary.status = RunStatus::Failed;
+    result.summary.message = std::string("forward run threw: ") + e.what();
+  } catch (...) {
+    result.summary.status = RunStatus::Failed;
+    result.summary.message = "forward run threw an unknown exception";
+  }
+  return result;
+}
+
+std::string exact_text(double value) {
+  char buf[40];
+  std::snprintf(buf, sizeof buf, "%.17g", value);
+  return buf;
+}
+
+Overrides point_overrides(const Study& study, const std::vector<double>& values) {
+  Overrides out = study.settings;
+  for (size_t k = 0; k < study.parameters.size() && k < values.size(); ++k)
+    out.emplace_back(study.parameters[k].key, exact_text(values[k]));
+  return out;
+}
+
+namespace {
+
+struct Fnv1a {
+  std::uint64_t h = 1469598103934665603ull;
+  void add(const std::string& s) {
+    for (unsigned char c : s) h = (h ^ c) * 1099511628211ull;
+    h = (h ^ 0xff) * 1099511628211ull;  // separator, so "ab"+"c" differs from "a"+"bc"
+  }
+};
+
+std::string slurp(const std::filesystem::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// Adds a scene file, its base chain and the files its scalars name (regions' CSV surfaces).
+void add_scene_file(const std::filesystem::path& path, Fnv1a& hash, std::set<std::string>& seen, int depth) {
+  if (depth > 8 || !seen.insert(std::filesystem::weakly_canonical(path).string()).second) return;
+  const std::string text = slurp(path);
+  hash.add(path.filename().string());
+  hash.add(text);
+  YAML::Node root;
+  try {
+    root = YAML::Load(text);
+  } catch (const YAML::Exception&) {
+    return;  // the reader will report it; the text is already in the hash
+  }
+  const std::filesystem::path dir = path.parent_path();
+  std::vector<YAML::Node> stack{root};
+  while (!stack.empty()) {
+    const YAML::Node n = stack.back();
+    stack.pop_back();
+    if (n.IsScalar()) {
+      const std::filesystem::path named = dir / n.Scalar();
+      std::error_code ec;
+      if (n.Scalar().size() < 256 && std::filesystem::is_regular_file(named, ec)) {
+        if (named.extension() == ".yaml" || named.extension() == ".yml")
+          add_scene_file(named, hash, seen, depth + 1);
+        else if (seen.insert(std::filesystem::weakly_canonical(named).string()).second)
+          hash.add(n.Scalar()), hash.add(slurp(named));
+      }
+    } else if (n.IsSequence()) {
+      for (const auto& item : n) stack.push_back(item);
+    } else if (n.IsMap()) {
+      for (const auto& kv : n) stack.push_back(kv.second);
+    }
+  }
+}
+
+}  // namespace
+
+std::string scene_input_hash(const Study& study) {
+  Fnv1a hash;
+  std::set<std::string> seen;
+  add_scene_file(study.scene_path, hash, seen, 0);
+  for (const auto& [key, value] : study.settings) hash.add(key + "=" + value);
+  char buf[20];
+  std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(hash.h));
+  return buf;
+}
+
+double peak_friction_angle(const Study& study, const std::vector<double>& values, const std::string& key) {
+  if (key.rfind("interfaces.", 0) != 0) return std::numeric_limits<double>::quiet_NaN();
+  const std::string rest = key.substr(11);
+  const std::string name = rest.substr(0, rest.find('.'));
+  try {
+    const Scene scene = io::read_scene(study.scene_path, point_overrides(study, values));
+    for (const Interface& i : scene.interfaces)
+      if (i.name == name) return i.friction_angle;
+  } catch (const std::exception&) {
+  }
+  return std::numeric_limits<double>::quiet_NaN();
+}
+
+void check_study_against_scene(const Study& study) {
+  std::vector<double> start;
+  for (const Parameter& p : study.parameters) start.push_back(p.discrete() ? p.levels.front() : p.start);
+  Scene scene;
+  try {
+    scene = io::read_scene(study.scene_path, point_overrides(study, start));
+  } catch (const io::SceneReadError& e) {
+    // Name the study entry whose override the scene rejected, when there is one.
+    const std::string what = e.what();
+    for (size_t k = 0; k < study.parameters.size(); ++k)
+      if (what.find(study.parameters[k].key) != std::string::npos)
+        throw StudyError(study.path + ": parameters[" + std::to_string(k) + "].key: the scene rejects it: " + what);
+    throw StudyError(study.path + ": scene: " + what);
+  }
+  for (size_t k = 0; k < study.observations.size(); ++k) {
+    const std::string& point = study.observations[k].point;
+    std::string names;
+    bool found = false;
+    for (const MeasurePoint& m : scene.measure) {
+      found = found || m.name == point;
+      names += (names.empty() ? "" : ", ") + m.name;
+    }
+    if (!found)
+      throw StudyError(study.path + ": observations[" + std::to_string(k) + "].point: unknown point '" + point +
+                       "'; the scene measures: " + (names.empty() ? "none" : names));
+  }
+}
+
+}  // namespace ddafit::inverse

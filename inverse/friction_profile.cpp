@@ -1,0 +1,114 @@
+// The bounding friction: chi^2 along the degradation parameter and the values of mu_b
+// where it stays within 1 and 4 of its minimum. With as many observations as parameters
+// a linearised interval means little (FIELD_NOTES, back-analysis); the profile does not
+// rely on linearity and respects the bounds.
+#include <algorithm>
+#include <cmath>
+
+#include "inverse/forward_call.hpp"
+#include "inverse/inversion.hpp"
+
+namespace ddafit::inverse {
+
+namespace {
+
+// Walks from the minimum to each side until chi^2 rises above min + threshold and
+// interpolates between the last point inside and the first outside, linearly in
+// sqrt(Delta chi^2): near a minimum chi^2 is quadratic, so sqrt(Delta) is linear in the
+// distance from it, and the crossing is exact even across a bracket wider than the range.
+ProfileRange range_of(const std::vector<ProfilePoint>& pts, size_t at_min, double chi2_min, double threshold) {
+  ProfileRange r;
+  r.threshold = threshold;
+  const double level = chi2_min + threshold;
+  const auto cross = [&](size_t in, size_t out) {
+    const double a = std::sqrt(std::max(0.0, pts[in].chi2 - chi2_min)), b = std::sqrt(pts[out].chi2 - chi2_min);
+    const double t = (std::sqrt(threshold) - a) / (b - a);
+    return pts[in].value + t * (pts[out].value - pts[in].value);
+  };
+  size_t k = at_min;
+  while (k > 0 && pts[k - 1].chi2 <= level) --k;
+  r.low_at_bound = k == 0;
+  r.low = k == 0 ? pts.front().value : cross(k, k - 1);
+  k = at_min;
+  while (k + 1 < pts.size() && pts[k + 1].chi2 <= level) ++k;
+  r.high_at_bound = k + 1 == pts.size();
+  r.high = k + 1 == pts.size() ? pts.back().value : cross(k, k + 1);
+  return r;
+}
+
+}  // namespace
+
+BoundingFriction profile_friction(Objective& objective, const Study& study, const std::vector<double>& best,
+                                  int parameter, int points, bool reoptimize, int budget) {
+  BoundingFriction f;
+  const Parameter& p = study.parameters.at(parameter);
+  f.parameter = parameter;
+  f.reoptimized = reoptimize;
+  f.best_value = best[parameter];
+  const std::string rest = p.key.substr(std::string("interfaces.").size());
+  f.interface = rest.substr(0, rest.find('.'));
+  f.peak_angle = peak_friction_angle(study, best, p.key);
+  if (!std::isfinite(f.peak_angle)) {
+    f.why_not = "the scene has no interface '" + f.interface + "' with a friction angle";
+    return f;
+  }
+  f.available = true;
+  f.mu_best = residual_friction(study, parameter, f.peak_angle, f.best_value);
+
+  std::vector<bool> others;
+  for (size_t j = 0; j < study.parameters.size(); ++j)
+    others.push_back(!study.parameters[j].discrete() && static_cast<int>(j) != parameter);
+  const bool any_other = std::find(others.begin(), others.end(), true) != others.end();
+  const auto add_point = [&](double value) {
+    for (const ProfilePoint& q : f.profile)
+      if (q.value == value) return;
+    std::vector<double> x = best;
+    x[parameter] = value;
+    ProfilePoint pt;
+    pt.value = value;
+    if (reoptimize && any_other && value != f.best_value) {
+      const FitResult r = fit(objective, study, x, others, budget);
+      pt.values = r.best;
+      pt.chi2 = r.chi2;
+    } else {
+      pt.values = x;
+      pt.chi2 = objective.evaluate(x).chi2;
+    }
+    pt.failed = pt.chi2 >= kFailedMisfit;
+    pt.mu = residual_friction(study, parameter, f.peak_angle, value);
+    const auto at = std::lower_bound(f.profile.begin(), f.profile.end(), value,
+                                     [](const ProfilePoint& a, double v) { return a.value < v; });
+    f.profile.insert(at, pt);
+  };
+  for (int k = 0; k < points; ++k) add_point(p.lower + (p.upper - p.lower) * k / (points - 1));
+  add_point(f.best_value);
+
+  // Bisect each crossing of Delta chi^2 = 1 and 4 down to one resolution, so the range
+  // does not depend on the scan spacing (about log2(spacing / resolution) runs each).
+  for (int extra = 0; extra < 48; ++extra) {
+    size_t at_min = 0;
+    for (size_t k = 1; k < f.profile.size(); ++k)
+      if (f.profile[k].chi2 < f.profile[at_min].chi2) at_min = k;
+    const double chi2_min = f.profile[at_min].chi2;
+    f.delta1 = range_of(f.profile, at_min, chi2_min, 1.0);
+    f.delta4 = range_of(f.profile, at_min, chi2_min, 4.0);
+    double split = NAN;
+    for (size_t k = 0; k + 1 < f.profile.size() && std::isnan(split); ++k) {
+      const ProfilePoint &a = f.profile[k], &b = f.profile[k + 1];
+      const bool crosses = (a.chi2 - chi2_min <= 1.0) != (b.chi2 - chi2_min <= 1.0) ||
+                           (a.chi2 - chi2_min <= 4.0) != (b.chi2 - chi2_min <= 4.0);
+      if (crosses && b.value - a.value > 1.5 * p.resolution)
+        split = a.value + std::round(0.5 * (b.value - a.value) / p.resolution) * p.resolution;
+    }
+    if (std::isnan(split)) break;
+    add_point(split);
+  }
+  for (ProfileRange* r : {&f.delta1, &f.delta4}) {
+    // mu falls as degradation (or roughness) rises: the low mu belongs to the high value.
+    r->mu_low = residual_friction(study, parameter, f.peak_angle, r->high);
+    r->mu_high = residual_friction(study, parameter, f.peak_angle, r->low);
+  }
+  return f;
+}
+
+}  // namespace ddafit::inverse

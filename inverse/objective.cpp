@@ -1,0 +1,131 @@
+#include "inverse/objective.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <algorithm>
+#include <limits>
+
+namespace ddafit::inverse {
+
+double summary_value(const PointSummary& p, const std::string& quantity) {
+  if (quantity == "max_lateral_displacement") return p.max_lateral_displacement;
+  if (quantity == "max_total_displacement") return p.max_total_displacement;
+  if (quantity == "peak_lateral_velocity") return p.peak_lateral_velocity;
+  if (quantity == "peak_total_velocity") return p.peak_total_velocity;
+  if (quantity == "duration") return p.duration;
+  if (quantity == "stopped") return p.stopped ? 1.0 : 0.0;
+  return std::numeric_limits<double>::quiet_NaN();
+}
+
+Objective::Objective(const Study& study, EvaluationCache& cache, ForwardModel forward)
+    : study_(study), cache_(cache), forward_(std::move(forward)) {}
+
+Evaluation Objective::score(const std::vector<double>& values, const SimulationSummary& summary) const {
+  Evaluation e;
+  e.values = values;
+  const size_t m = study_.observations.size();
+  e.simulated.assign(m, std::numeric_limits<double>::quiet_NaN());
+  e.residuals.assign(m, 0.0);
+  e.failed = summary.status != RunStatus::Completed;
+  e.message = summary.message;
+  for (const PointSummary& p : summary.points) e.point_names.push_back(p.name);
+  for (size_t k = 0; k < m && !e.failed; ++k) {
+    const Observation& o = study_.observations[k];
+    for (const PointSummary& p : summary.points)
+      if (p.name == o.point) e.simulated[k] = summary_value(p, o.quantity);
+    if (!std::isfinite(e.simulated[k])) {
+      e.failed = true;
+      e.message = "the run's summary has no finite " + o.quantity + " for point " + o.point;
+      break;
+    }
+    const double r = (e.simulated[k] - o.value) / o.sigma;
+    const bool counts = o.kind == ObservationKind::Equal || (o.kind == ObservationKind::AtMost && r > 0.0) ||
+                        (o.kind == ObservationKind::AtLeast && r < 0.0);
+    e.residuals[k] = counts ? r : 0.0;
+    e.chi2 += e.residuals[k] * e.residuals[k];
+  }
+  if (e.failed) {
+    // Rising away from the start (in units of each parameter's range) by at most 1e3 per
+    // parameter, so the value stays near kFailedMisfit and far above any real fit.
+    double away = 0.0;
+    for (size_t j = 0; j < study_.parameters.size(); ++j) {
+      const Parameter& p = study_.parameters[j];
+      if (p.discrete()) continue;
+      const double d = (values[j] - p.start) / (p.upper - p.lower);
+      away += 1e3 * d * d;
+    }
+    e.chi2 = kFailedMisfit + away;
+    e.residuals.assign(m, std::sqrt(e.chi2 / static_cast<double>(m)));
+  }
+  return e;
+}
+
+Evaluation Objective::evaluate(const std::vector<double>& values) {
+  const std::string key = point_key(study_, values);
+  if (const auto it = seen_.find(key); it != seen_.end()) {
+    // Seen in this process (an optimiser revisiting, or another fit): never run twice.
+    if (best_ < 0 || log_[it->second].chi2 < log_[best_].chi2) {
+      best_ = static_cast<long>(it->second);
+      best_history_.clear();  // the report looks for it in the cache
+    }
+    return log_[it->second];
+  }
+
+  Evaluation e;
+  std::vector<HistoryRow> history;
+  if (std::optional<CachedRun> hit = cache_.find(key)) {
+    e = score(values, hit->result.summary);
+    e.cached = true;
+    ++cached_;
+    seconds_cached_ += hit->wall_seconds;
+    history = std::move(hit->result.history);
+  } else {
+    const auto t0 = std::chrono::steady_clock::now();
+    SimulationResult run;
+    try {
+      run = forward_(study_.scene_path, point_overrides(study_, values));
+    } catch (const std::exception& ex) {  // the forward call promises not to throw; be sure
+      run.summary.status = RunStatus::Failed;
+      run.summary.message = std::string("forward run threw: ") + ex.what();
+    }
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    ++run_;
+    seconds_run_ += seconds;
+    e = score(values, run.summary);
+    // Histories are kept for new best points only: the report draws the best fit's curve.
+    const bool is_best = !e.failed && (best_ < 0 || e.chi2 < log_[best_].chi2);
+    cache_.store(key, run, seconds, is_best);
+    if (is_best) history = std::move(run.history);
+  }
+  if (e.failed && on_log)
+    on_log("evaluation " + std::to_string(log_.size() + 1) + ": counted as chi2 = " + std::to_string(e.chi2) +
+           " because the forward run failed: " + e.message);
+  seen_[key] = log_.size();
+  log_.push_back(std::move(e));
+  best_chi2_ = std::min(best_chi2_, log_.back().chi2);
+  if (best_ < 0 || log_.back().chi2 < log_[best_].chi2) {
+    best_ = static_cast<long>(log_.size()) - 1;
+    best_history_ = std::move(history);
+  }
+  if (on_progress) on_progress(progress());
+  return log_.back();
+}
+
+void Objective::reset_best() {
+  best_ = -1;
+  best_history_.clear();
+}
+
+Progress Objective::progress() const {
+  Progress p;
+  p.evaluations = static_cast<long>(log_.size());
+  p.cached = cached_;
+  p.run = run_;
+  p.best_chi2 = best_chi2_;
+  p.mean_run_seconds = run_ > 0 ? seconds_run_ / run_ : (cached_ > 0 ? seconds_cached_ / cached_ : 0.0);
+  p.planned = planned_;
+  p.eta_seconds = std::max(0L, planned_ - p.evaluations) * p.mean_run_seconds;
+  return p;
+}
+
+}  // namespace ddafit::inverse

@@ -1,0 +1,86 @@
+// The misfit of a point of parameter space: chi^2 = sum(((sim - obs)/sigma)^2) over the
+// observations. Every forward run goes through here, so this is where runs are cached,
+// counted, timed, and where the best point seen is kept (optimisers are not trusted to
+// return it: COBYLA-like methods return their last point, and Ceres its last accepted).
+#pragma once
+
+#include <functional>
+#include <limits>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "inverse/evaluation_cache.hpp"
+#include "inverse/forward_call.hpp"
+#include "inverse/study.hpp"
+
+namespace ddafit::inverse {
+
+// Misfit given to a run that failed or could not be set up: large, finite, and rising
+// away from the study's start point so that a local method is led back to runnable ground.
+constexpr double kFailedMisfit = 1e6;
+
+struct Evaluation {
+  std::vector<double> values;     // one per study parameter (levels included)
+  double chi2 = 0.0;
+  std::vector<double> simulated;  // one per observation (NaN when the run failed)
+  std::vector<double> residuals;  // one per observation; zero for a limit that holds
+  bool failed = false;
+  bool cached = false;            // served from the cache file (an earlier process)
+  std::string message;            // why it failed
+  std::vector<std::string> point_names;  // the run's measure points, in scene order
+};
+
+// What the progress line shows.
+struct Progress {
+  long evaluations = 0;  // objective calls that needed a distinct point
+  long cached = 0;       // of which served from the cache file
+  long run = 0;          // of which forward runs made by this process
+  double best_chi2 = 0.0;  // over the whole study so far
+  double mean_run_seconds = 0.0;
+  long planned = 0;      // evaluations the study plans (levels x budget + profile)
+  double eta_seconds = 0.0;
+};
+
+class Objective {
+ public:
+  Objective(const Study& study, EvaluationCache& cache, ForwardModel forward);
+
+  // Observers; none may throw.
+  std::function<void(const Progress&)> on_progress;
+  std::function<void(const std::string&)> on_log;
+
+  Evaluation evaluate(const std::vector<double>& values);
+
+  // The best point since the last reset_best() (one fit, one block-size level).
+  void reset_best();
+  bool has_best() const { return best_ >= 0; }
+  const Evaluation& best() const { return log_.at(best_); }
+  // History of the best point's run when this process has it (empty otherwise; the cache
+  // holds the histories of points that were best when they ran).
+  const std::vector<HistoryRow>& best_history() const { return best_history_; }
+
+  void set_planned(long planned) { planned_ = planned; }
+  Progress progress() const;
+  const std::vector<Evaluation>& log() const { return log_; }
+  double wall_seconds_run() const { return seconds_run_; }
+
+ private:
+  Evaluation score(const std::vector<double>& values, const SimulationSummary& summary) const;
+
+  const Study& study_;
+  EvaluationCache& cache_;
+  ForwardModel forward_;
+  std::map<std::string, size_t> seen_;  // point key -> index in log_
+  std::vector<Evaluation> log_;
+  long best_ = -1;
+  std::vector<HistoryRow> best_history_;
+  double best_chi2_ = std::numeric_limits<double>::infinity();  // over the whole study, for progress
+  long cached_ = 0, run_ = 0, planned_ = 0;
+  double seconds_run_ = 0.0, seconds_cached_ = 0.0;
+};
+
+// A summary field by its name (summary_quantities()); NaN for an unknown name.
+double summary_value(const PointSummary& point, const std::string& quantity);
+
+}  // namespace ddafit::inverse

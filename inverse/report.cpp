@@ -1,0 +1,197 @@
+#include "inverse/report.hpp"
+
+#include <fmt/format.h>
+#include <fmt/os.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+namespace ddafit::inverse {
+
+namespace {
+
+using nlohmann::json;
+
+const char* kind_name(ObservationKind k) {
+  return k == ObservationKind::AtMost ? "at_most" : k == ObservationKind::AtLeast ? "at_least" : "equal";
+}
+
+json named_values(const Study& study, const std::vector<double>& values, bool discrete) {
+  json j = json::object();
+  for (size_t k = 0; k < study.parameters.size() && k < values.size(); ++k)
+    if (study.parameters[k].discrete() == discrete) j[study.parameters[k].name] = values[k];
+  return j;
+}
+
+json observations_json(const Study& study, const Evaluation& e) {
+  json out = json::array();
+  for (size_t k = 0; k < study.observations.size(); ++k) {
+    const Observation& o = study.observations[k];
+    out.push_back({{"point", o.point}, {"quantity", o.quantity}, {"kind", kind_name(o.kind)}, {"observed", o.value},
+                   {"sigma", o.sigma}, {"simulated", k < e.simulated.size() ? e.simulated[k] : NAN},
+                   {"residual", k < e.residuals.size() ? e.residuals[k] : NAN}});
+  }
+  return out;
+}
+
+json range_json(const ProfileRange& r) {
+  return {{"delta_chi2", r.threshold}, {"low", r.low}, {"high", r.high}, {"mu_low", r.mu_low},
+          {"mu_high", r.mu_high}, {"low_at_bound", r.low_at_bound}, {"high_at_bound", r.high_at_bound}};
+}
+
+json report_json(const Study& study, const InversionSummary& s) {
+  json j;
+  j["study"] = study.path;
+  j["scene"] = study.scene_path;
+  j["model_version"] = s.model_version;
+  j["scene_hash"] = s.scene_hash;
+  j["cache"] = s.cache_path;
+  j["method"] = {{"optimizer", study.method.optimizer == Optimizer::Ceres ? "ceres" : "nlopt"},
+                 {"algorithm", study.method.optimizer == Optimizer::Ceres ? "levenberg_marquardt" : study.method.algorithm},
+                 {"budget", s.budget},
+                 {"step_tolerance", study.method.step_tolerance}, {"chi2_tolerance", study.method.chi2_tolerance}};
+  j["evaluations_total"] = s.evaluations;
+  j["evaluations_cached"] = s.cached;
+  j["evaluations_run"] = s.run;
+  j["history_reruns"] = s.history_reruns;
+  j["wall_seconds"] = s.wall_seconds;
+  j["run_seconds"] = s.run_seconds;
+  j["parameters"] = json::array();
+  for (const Parameter& p : study.parameters)
+    j["parameters"].push_back(p.discrete() ? json{{"name", p.name}, {"key", p.key}, {"levels", p.levels}}
+                                           : json{{"name", p.name}, {"key", p.key}, {"lower", p.lower},
+                                                  {"upper", p.upper}, {"start", p.start},
+                                                  {"resolution", p.resolution}});
+  j["levels"] = json::array();
+  for (const LevelFit& l : s.levels)
+    j["levels"].push_back({{"level", named_values(study, l.start, true)},
+                           {"best", named_values(study, l.best.values, false)},
+                           {"chi2", l.best.chi2},
+                           {"failed", l.best.failed},
+                           {"evaluations", l.fit.evaluations},
+                           {"converged", l.fit.converged},
+                           {"stop_reason", l.fit.stop_reason},
+                           {"observations", observations_json(study, l.best)}});
+  j["best_level"] = s.best_level;
+  if (s.best_level >= 0) {
+    const LevelFit& b = s.levels[s.best_level];
+    j["best"] = named_values(study, b.best.values, false);
+    j["best"].update(named_values(study, b.best.values, true));
+    j["chi2"] = b.best.chi2;
+  }
+  const BoundingFriction& f = s.friction;
+  json bf = {{"available", f.available}};
+  if (!f.available) bf["why_not"] = f.why_not;
+  if (f.available) {
+    bf["parameter"] = study.parameters[f.parameter].name;
+    bf["interface"] = f.interface;
+    bf["peak_friction_angle"] = f.peak_angle;
+    bf["best_value"] = f.best_value;
+    bf["mu_best"] = f.mu_best;
+    bf["profile_mode"] = f.reoptimized ? "other parameters re-optimised at each point" : "other parameters fixed at the best fit";
+    bf["profile"] = json::array();
+    double chi2_min = INFINITY;
+    for (const ProfilePoint& p : f.profile) chi2_min = std::min(chi2_min, p.chi2);
+    for (const ProfilePoint& p : f.profile)
+      bf["profile"].push_back({{"value", p.value}, {"chi2", p.chi2}, {"delta_chi2", p.chi2 - chi2_min}, {"mu", p.mu},
+                               {"failed", p.failed}});
+    bf["delta_chi2_1"] = range_json(f.delta1);
+    bf["delta_chi2_4"] = range_json(f.delta4);
+  }
+  j["bounding_friction"] = bf;
+  const CovarianceReport& c = s.covariance;
+  json cj = {{"computed", c.computed}, {"warnings", c.warnings}, {"condition_number", c.condition_number}};
+  cj["parameters"] = json::array();
+  for (int k : c.parameters) cj["parameters"].push_back(study.parameters[k].name);
+  if (c.computed) {
+    cj["matrix"] = c.matrix;
+    cj["standard_deviation"] = c.standard_deviation;
+    cj["mu_standard_deviation"] = c.mu_standard_deviation;
+  }
+  j["covariance"] = cj;
+  j["notes"] = s.notes;
+  return j;
+}
+
+std::string markdown(const Study& study, const InversionSummary& s) {
+  std::string md = fmt::format("# Back-analysis: {}\n\nScene `{}`, model version {}, scene input hash {}.\n\n",
+                               study.path, study.scene_path, s.model_version, s.scene_hash);
+  md += fmt::format("{} evaluations: {} forward runs made now, {} from the cache ({}); {:.1f} s wall, {:.1f} s in runs.\n\n",
+                    s.evaluations, s.run, s.cached, s.cache_path, s.wall_seconds, s.run_seconds);
+  md += "## Best parameters per level\n\n| level | ";
+  for (const Parameter& p : study.parameters) md += p.name + " | ";
+  md += "chi2 | runs | stop |\n|---|";
+  for (size_t k = 0; k <= study.parameters.size() + 2; ++k) md += "---|";
+  md += "\n";
+  for (size_t l = 0; l < s.levels.size(); ++l) {
+    const LevelFit& f = s.levels[l];
+    md += fmt::format("| {}{} | ", l + 1, static_cast<int>(l) == s.best_level ? " (best)" : "");
+    for (double v : f.best.values) md += fmt::format("{:.6g} | ", v);
+    md += fmt::format("{:.4g} | {} | {} |\n", f.best.chi2, f.fit.evaluations, f.fit.stop_reason);
+  }
+  if (s.best_level >= 0) {
+    md += "\n## Simulated against observed (best level)\n\n| point | quantity | kind | observed | sigma | simulated | residual |\n|---|---|---|---|---|---|---|\n";
+    const Evaluation& e = s.levels[s.best_level].best;
+    for (size_t k = 0; k < study.observations.size(); ++k) {
+      const Observation& o = study.observations[k];
+      md += fmt::format("| {} | {} | {} | {:.6g} | {:.3g} | {:.6g} | {:+.3f} |\n", o.point, o.quantity,
+                        kind_name(o.kind), o.value, o.sigma, e.simulated[k], e.residuals[k]);
+    }
+  }
+  const BoundingFriction& f = s.friction;
+  md += "\n## Residual basal friction\n\n";
+  if (!f.available) {
+    md += "Not computed: " + f.why_not + ".\n";
+  } else {
+    const Parameter& p = study.parameters[f.parameter];
+    md += fmt::format("mu_b = tan(phi_p - i) on interface `{}` (phi_p = {:.4g} deg) with {} = {:.4g}: **mu_b = {:.4f}**.\n\n",
+                      f.interface, f.peak_angle, p.name, f.best_value, f.mu_best);
+    md += fmt::format("Profile of chi2 over {} ({} points, {}):\n\n", p.name, f.profile.size(),
+                      f.reoptimized ? "other parameters re-optimised at each point" : "other parameters fixed at the best fit");
+    for (const ProfileRange* r : {&f.delta1, &f.delta4})
+      md += fmt::format("- Delta chi2 <= {:g}: {} in [{:.4g}{}, {:.4g}{}] -> mu_b in [{:.4f}, {:.4f}]\n", r->threshold,
+                        p.name, r->low, r->low_at_bound ? " (bound)" : "", r->high, r->high_at_bound ? " (bound)" : "",
+                        r->mu_low, r->mu_high);
+    md += "\nThe lowest mu_b compatible with the observations (Delta chi2 <= 4) is the bounding friction.\n";
+  }
+  const CovarianceReport& c = s.covariance;
+  md += "\n## Linearised covariance (secondary diagnostic)\n\n";
+  if (c.computed) {
+    for (size_t k = 0; k < c.parameters.size(); ++k)
+      md += fmt::format("- {}: standard deviation {:.4g}\n", study.parameters[c.parameters[k]].name,
+                        c.standard_deviation[k]);
+    if (c.mu_standard_deviation > 0.0) md += fmt::format("- mu_b: standard deviation {:.4f}\n", c.mu_standard_deviation);
+    md += fmt::format("- condition number of the weighted Jacobian: {:.3g}\n", c.condition_number);
+  }
+  for (const std::string& w : c.warnings) md += "- warning: " + w + "\n";
+  md += "\n## Charts\n\n![profile](profile.png)\n![fit](fit.png)\n![velocity-distance](velocity_distance.png)\n";
+  if (!s.notes.empty()) {
+    md += "\n## Notes\n\n";
+    for (const std::string& n : s.notes) md += "- " + n + "\n";
+  }
+  return md;
+}
+
+}  // namespace
+
+std::vector<std::string> write_report(const std::string& dir, const Study& study, const InversionSummary& summary) {
+  std::filesystem::create_directories(dir);
+  const std::filesystem::path d(dir);
+  {
+    std::ofstream out(d / "report.json");
+    out << report_json(study, summary).dump(2) << "\n";
+    if (!out) throw std::runtime_error(dir + ": cannot write report.json");
+  }
+  {
+    std::ofstream out(d / "report.md");
+    out << markdown(study, summary);
+    if (!out) throw std::runtime_error(dir + ": cannot write report.md");
+  }
+  std::vector<std::string> notes;
+  std::string reason;
+  if (!plot_report(dir, study, summary, reason)) notes.push_back("charts not drawn: " + reason);
+  return notes;
+}
+
+}  // namespace ddafit::inverse

@@ -1,0 +1,87 @@
+// A back-analysis study: which scene, which scene values are free, what was observed,
+// and how to search. Plain data; read_study() fills it from YAML and checks it once, at
+// the boundary, so the optimisers never see an impossible setting.
+#pragma once
+
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace ddafit::inverse {
+
+// A study file that cannot be used. what() is one line, "FILE: KEY: PROBLEM".
+struct StudyError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+// A scene value the search may change, set through the scene reader's overrides.
+struct Parameter {
+  std::string name;          // the study's name, used in reports
+  std::string key;           // scene key it sets, e.g. "interfaces.clay.degradation_percent"
+  double lower = 0.0;        // bounds, in the parameter's units; lower < upper
+  double upper = 0.0;
+  double start = 0.0;        // first guess, inside [lower, upper]
+  double resolution = 0.0;   // > 0: the smallest change that matters; sets steps and stopping
+  std::vector<double> levels;  // non-empty: a discrete parameter (block size), fitted level by level
+
+  bool discrete() const { return !levels.empty(); }
+};
+
+// How an observation enters the misfit. Equal: ((sim - value)/sigma)^2 always. AtMost and
+// AtLeast are one-sided field limits ("45 s or less"): the same term, but only when the
+// limit is violated, so a simulation inside the limit adds nothing.
+enum class ObservationKind { Equal, AtMost, AtLeast };
+
+struct Observation {
+  std::string point;     // a measure point of the scene
+  std::string quantity;  // a PointSummary field, e.g. "max_lateral_displacement"
+  double value = 0.0;
+  double sigma = 0.0;    // > 0, same units as value
+  ObservationKind kind = ObservationKind::Equal;
+};
+
+enum class Optimizer { Nlopt, Ceres };
+
+struct MethodOptions {
+  Optimizer optimizer = Optimizer::Nlopt;
+  std::string algorithm = "LN_BOBYQA";  // NLopt only: LN_BOBYQA, LN_SBPLX or GN_DIRECT_L
+  int budget = 100;                     // objective evaluations per fit (per level), cached or run
+  double step_tolerance = 0.5;          // stop when a step is below this x each resolution
+  double chi2_tolerance = 1e-4;         // stop when chi^2 changes by less than this (absolute)
+};
+
+// The profile behind the bounding friction: chi^2 along the degradation parameter.
+struct ProfileOptions {
+  std::string parameter;    // a parameter name; "" = the first *.degradation_percent parameter
+  int points = 11;          // scan points from lower to upper (the best point is added)
+  bool reoptimize = false;  // false: the other parameters stay at the best fit (cheap);
+                            // true: they are re-fitted at every scan point (budget/2 each)
+};
+
+struct Study {
+  std::string path;        // the study file, used as FILE in messages
+  std::string scene_path;  // resolved against the study file's folder
+  std::vector<std::pair<std::string, std::string>> settings;  // fixed scene overrides for every run
+  std::vector<Parameter> parameters;
+  std::vector<Observation> observations;
+  MethodOptions method;
+  ProfileOptions profile;
+};
+
+// The PointSummary fields an observation may name.
+const std::vector<std::string>& summary_quantities();
+
+// Reads and checks a study file. Throws StudyError.
+Study read_study(const std::string& path);
+
+// Checks the parts that need the scene: measure point names, and that the parameter keys
+// are scene values (by reading the scene at the start point of the first level, which also
+// meshes region scenes at that block size). Throws StudyError naming the study's key.
+void check_study_against_scene(const Study& study);
+
+// Index of the profiled parameter (ProfileOptions::parameter or the first continuous
+// *.degradation_percent / *.roughness_angle parameter), or -1 when there is none.
+int profile_parameter(const Study& study);
+
+}  // namespace ddafit::inverse

@@ -1,0 +1,211 @@
+// Reads study files (format: study.hpp, docs/back-analysis.md). Every failure is one line,
+// "FILE: KEY: PROBLEM", using the scene reader's checked YAML access.
+#include <yaml-cpp/yaml.h>
+
+#include <cmath>
+#include <filesystem>
+#include <algorithm>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include "forward/io/yaml_checks.hpp"
+#include "inverse/study.hpp"
+
+namespace ddafit::inverse {
+
+const std::vector<std::string>& summary_quantities() {
+  static const std::vector<std::string> names{"max_lateral_displacement", "max_total_displacement",
+                                              "peak_lateral_velocity",    "peak_total_velocity",
+                                              "duration",                 "stopped"};
+  return names;
+}
+
+namespace {
+
+using io::indexed;
+using io::join;
+
+class StudyReader : public io::YamlChecks {
+ public:
+  using YamlChecks::YamlChecks;
+
+  Study read(const YAML::Node& root, const std::string& dir) const {
+    if (!root.IsMap()) fail("(top level)", "expected a map with scene, parameters, observations");
+    check_keys(root, "", {"scene", "settings", "parameters", "observations", "method", "profile"});
+    Study s;
+    s.path = file();
+    const std::string scene = text(required(root, "", "scene", "name the scene file (relative to the study)"), "scene");
+    const std::filesystem::path p(scene);
+    s.scene_path = p.is_relative() && !dir.empty() ? (std::filesystem::path(dir) / p).string() : scene;
+    if (!std::filesystem::exists(s.scene_path)) fail("scene", "cannot find '" + s.scene_path + "'");
+    if (const YAML::Node n = root["settings"])
+      for (const std::string& key : map_keys(n, "settings")) s.settings.emplace_back(key, YAML::Dump(n[key]));
+    const YAML::Node params = required(root, "", "parameters", "list the scene values to fit");
+    list(params, "parameters");
+    for (size_t k = 0; k < params.size(); ++k) s.parameters.push_back(parameter(params[k], indexed("parameters", k)));
+    check_parameters(s.parameters);
+    const YAML::Node obs = required(root, "", "observations", "list what was observed");
+    list(obs, "observations");
+    if (obs.size() == 0) fail("observations", "the list is empty; give at least one observation");
+    for (size_t k = 0; k < obs.size(); ++k) s.observations.push_back(observation(obs[k], indexed("observations", k)));
+    if (const YAML::Node n = root["method"]) s.method = method(n);
+    if (const YAML::Node n = root["profile"]) s.profile = profile(n, s.parameters);
+    return s;
+  }
+
+ private:
+  Parameter parameter(const YAML::Node& n, const std::string& path) const {
+    Parameter q;
+    q.name = text(required(n, path, "name", "give the parameter a name"), join(path, "name"));
+    q.key = text(required(n, path, "key", "name the scene value it sets, e.g. interfaces.clay.degradation_percent"),
+                 join(path, "key"));
+    if (const YAML::Node levels = n["levels"]) {
+      check_keys(n, path, {"name", "key", "levels"});
+      list(levels, join(path, "levels"));
+      if (levels.size() == 0) fail(join(path, "levels"), "the list is empty; give at least one level");
+      std::set<double> seen;
+      for (size_t k = 0; k < levels.size(); ++k) {
+        q.levels.push_back(number(levels[k], indexed(join(path, "levels"), k)));
+        if (!seen.insert(q.levels.back()).second) fail(indexed(join(path, "levels"), k), "repeats a level");
+      }
+      return q;
+    }
+    check_keys(n, path, {"name", "key", "lower", "upper", "start", "resolution", "levels"});
+    q.lower = req_number(n, path, "lower", "give the lower bound");
+    q.upper = req_number(n, path, "upper", "give the upper bound");
+    q.start = req_number(n, path, "start", "give the first guess");
+    q.resolution = req_number(n, path, "resolution", "give the smallest change that matters");
+    if (!(q.lower < q.upper))
+      fail(join(path, "upper"), "is " + fmt(q.upper) + ", not above lower " + fmt(q.lower) + "; the bounds are impossible");
+    if (q.start < q.lower || q.start > q.upper)
+      fail(join(path, "start"), "is " + fmt(q.start) + ", outside [" + fmt(q.lower) + ", " + fmt(q.upper) + "]");
+    if (!(q.resolution > 0.0)) fail(join(path, "resolution"), "is " + fmt(q.resolution) + "; must be > 0");
+    if (q.resolution >= q.upper - q.lower)
+      fail(join(path, "resolution"), "is not smaller than upper - lower; nothing left to search");
+    return q;
+  }
+
+  void check_parameters(const std::vector<Parameter>& ps) const {
+    if (ps.empty()) fail("parameters", "the list is empty; give at least one parameter");
+    std::set<std::string> names, keys;
+    bool continuous = false;
+    for (size_t k = 0; k < ps.size(); ++k) {
+      if (!names.insert(ps[k].name).second) fail(indexed("parameters", k) + ".name", "'" + ps[k].name + "' is used twice");
+      if (!keys.insert(ps[k].key).second) fail(indexed("parameters", k) + ".key", "'" + ps[k].key + "' is set twice");
+      continuous = continuous || !ps[k].discrete();
+    }
+    if (!continuous) fail("parameters", "all are discrete levels; give at least one with lower, upper, start, resolution");
+  }
+
+  Observation observation(const YAML::Node& n, const std::string& path) const {
+    check_keys(n, path, {"point", "quantity", "value", "sigma", "kind"});
+    Observation o;
+    o.point = text(required(n, path, "point", "name the scene's measure point"), join(path, "point"));
+    o.quantity = text(required(n, path, "quantity", "name a summary field"), join(path, "quantity"));
+    const auto& qs = summary_quantities();
+    if (std::find(qs.begin(), qs.end(), o.quantity) == qs.end()) {
+      std::string all;
+      for (const std::string& q : qs) all += (all.empty() ? "" : ", ") + q;
+      fail(join(path, "quantity"), "unknown quantity '" + o.quantity + "'; known: " + all);
+    }
+    o.value = req_number(n, path, "value", "give the observed value");
+    o.sigma = req_number(n, path, "sigma", "give the observation's standard deviation");
+    if (!(o.sigma > 0.0)) fail(join(path, "sigma"), "is " + fmt(o.sigma) + "; must be > 0");
+    if (const YAML::Node k = n["kind"]) {
+      const std::string kind = text(k, join(path, "kind"));
+      if (kind == "equal") o.kind = ObservationKind::Equal;
+      else if (kind == "at_most") o.kind = ObservationKind::AtMost;
+      else if (kind == "at_least") o.kind = ObservationKind::AtLeast;
+      else fail(join(path, "kind"), "unknown kind '" + kind + "'; known: equal, at_most, at_least");
+    }
+    return o;
+  }
+
+  MethodOptions method(const YAML::Node& n) const {
+    check_keys(n, "method", {"optimizer", "algorithm", "budget", "step_tolerance", "chi2_tolerance"});
+    MethodOptions m;
+    if (const YAML::Node o = n["optimizer"]) {
+      const std::string name = text(o, "method.optimizer");
+      if (name == "nlopt") m.optimizer = Optimizer::Nlopt;
+      else if (name == "ceres") m.optimizer = Optimizer::Ceres;
+      else fail("method.optimizer", "unknown optimizer '" + name + "'; known: nlopt, ceres");
+    }
+    if (const YAML::Node a = n["algorithm"]) {
+      m.algorithm = text(a, "method.algorithm");
+      if (m.optimizer != Optimizer::Nlopt) fail("method.algorithm", "only for optimizer: nlopt");
+      if (m.algorithm != "LN_BOBYQA" && m.algorithm != "LN_SBPLX" && m.algorithm != "GN_DIRECT_L")
+        fail("method.algorithm", "unknown algorithm '" + m.algorithm + "'; known: LN_BOBYQA, LN_SBPLX, GN_DIRECT_L");
+    }
+    if (const YAML::Node b = n["budget"]) {
+      const double budget = number(b, "method.budget");
+      if (!(budget >= 1.0) || budget != std::floor(budget) || budget > 1e6)
+        fail("method.budget", "is " + b.Scalar() + "; must be a whole number of forward runs >= 1");
+      m.budget = static_cast<int>(budget);
+    }
+    opt_number(n, "method", "step_tolerance", m.step_tolerance);
+    opt_number(n, "method", "chi2_tolerance", m.chi2_tolerance);
+    if (!(m.step_tolerance > 0.0)) fail("method.step_tolerance", "must be > 0 (a fraction of each resolution)");
+    if (!(m.chi2_tolerance > 0.0)) fail("method.chi2_tolerance", "must be > 0");
+    return m;
+  }
+
+  ProfileOptions profile(const YAML::Node& n, const std::vector<Parameter>& ps) const {
+    check_keys(n, "profile", {"parameter", "points", "reoptimize"});
+    ProfileOptions p;
+    if (const YAML::Node q = n["parameter"]) {
+      p.parameter = text(q, "profile.parameter");
+      const auto it = std::find_if(ps.begin(), ps.end(), [&](const Parameter& x) { return x.name == p.parameter; });
+      if (it == ps.end()) fail("profile.parameter", "unknown parameter '" + p.parameter + "'");
+      if (it->discrete()) fail("profile.parameter", "'" + p.parameter + "' has levels; profile a continuous parameter");
+    }
+    if (const YAML::Node q = n["points"]) {
+      const double points = number(q, "profile.points");
+      if (!(points >= 0.0) || points != std::floor(points) || points == 1.0 || points > 10000)
+        fail("profile.points", "is " + q.Scalar() + "; must be 0 (no profile) or a whole number >= 2");
+      p.points = static_cast<int>(points);
+    }
+    if (const YAML::Node q = n["reoptimize"]) p.reoptimize = scalar<bool>(q, "profile.reoptimize", "true or false");
+    return p;
+  }
+
+  static std::string fmt(double v) {
+    std::ostringstream s;
+    s << v;
+    return s.str();
+  }
+};
+
+}  // namespace
+
+Study read_study(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream text;
+  if (in) text << in.rdbuf();
+  if (!in) throw StudyError(path + ": cannot read the file");
+  try {
+    const YAML::Node root = YAML::Load(text.str());
+    return StudyReader(path).read(root, std::filesystem::path(path).parent_path().string());
+  } catch (const io::SceneReadError& e) {
+    throw StudyError(e.what());
+  } catch (const YAML::Exception& e) {
+    throw StudyError(path + ": line " + std::to_string(e.mark.line + 1) + ": malformed YAML: " + e.msg);
+  }
+}
+
+int profile_parameter(const Study& study) {
+  const auto& ps = study.parameters;
+  for (size_t k = 0; k < ps.size(); ++k)
+    if (!study.profile.parameter.empty() && ps[k].name == study.profile.parameter) return static_cast<int>(k);
+  if (!study.profile.parameter.empty()) return -1;
+  const auto ends_with = [](const std::string& s, const std::string& tail) {
+    return s.size() >= tail.size() && s.compare(s.size() - tail.size(), tail.size(), tail) == 0;
+  };
+  for (const char* tail : {".degradation_percent", ".roughness_angle"})
+    for (size_t k = 0; k < ps.size(); ++k)
+      if (!ps[k].discrete() && ps[k].key.rfind("interfaces.", 0) == 0 && ends_with(ps[k].key, tail))
+        return static_cast<int>(k);
+  return -1;
+}
+
+}  // namespace ddafit::inverse
