@@ -7,6 +7,7 @@
 #include <fstream>
 #include <iostream>
 
+#include "forward/model_revision.hpp"
 #include "apps/ddafit/commands.hpp"
 #include "apps/ddafit/exit_codes.hpp"
 #include "inverse/evaluation_cache.hpp"
@@ -80,7 +81,7 @@ int run_invert(const InvertArgs& args) {
   options.out_dir = args.out;
   options.resume = args.resume;
   options.budget = args.budget;
-  options.model_version = DDAFIT_VERSION;
+  options.model_version = std::string(DDAFIT_VERSION) + "+" + kModelRevision;
   if (!args.quiet) {
     options.on_progress = [](const inverse::Progress& p) {
       std::cerr << fmt::format("\r  evaluation {} of <= {} ({} cached)  best chi2 {:.4g}  {:.1f} s/run  ETA {}   ",
@@ -150,7 +151,7 @@ int run_scan(const ScanArgs& args) {
   inverse::InversionOptions options;
   options.out_dir = args.out;
   options.resume = args.resume;
-  options.model_version = DDAFIT_VERSION;
+  options.model_version = std::string(DDAFIT_VERSION) + "+" + kModelRevision;
   options.on_log = [](const std::string& line) { std::cerr << "note: " << line << "\n"; };
   inverse::ScanResult scan;
   try {
