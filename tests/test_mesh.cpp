@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <algorithm>
 #include <random>
 
 #include "forward/geometry.hpp"
@@ -24,6 +25,17 @@ std::vector<Vec2> random_region(std::mt19937& rng) {
     poly.emplace_back(r * std::cos(a), r * std::sin(a));
   }
   return poly;
+}
+
+// Whether p lies on the polygon's boundary (to round-off of the region's size).
+bool on_outline(const Vec2& p, const std::vector<Vec2>& polygon) {
+  for (size_t k = 0; k < polygon.size(); ++k) {
+    const Vec2& a = polygon[k];
+    const Vec2& b = polygon[(k + 1) % polygon.size()];
+    const double t = std::clamp((p - a).dot(b - a) / (b - a).squaredNorm(), 0.0, 1.0);
+    if ((a + t * (b - a) - p).norm() < 1e-7) return true;
+  }
+  return false;
 }
 
 TEST(Mesh, RandomJointSetsTileTheRegionWithSimpleBlocksAndNoSlivers) {
@@ -63,8 +75,17 @@ TEST(Mesh, RandomJointSetsTileTheRegionWithSimpleBlocksAndNoSlivers) {
       EXPECT_GT(signed_area(b), 0.0);                          // counter-clockwise
       EXPECT_EQ(first_self_intersection(b).first, -1);         // simple
       EXPECT_GE(signed_area(b), min_area * (1.0 - 1e-12));     // no sliver by area
-      for (size_t v = 0; v < b.size(); ++v)                    // no repeated vertex
-        EXPECT_GT((b[v] - b[(v + 1) % b.size()]).norm(), 1e-9 * settings.block_size);
+      for (size_t v = 0; v < b.size(); ++v) {                  // no repeated vertex
+        const Vec2& p = b[v];
+        const Vec2& q = b[(v + 1) % b.size()];
+        EXPECT_GT((p - q).norm(), 1e-9 * settings.block_size);
+        // An edge shorter than min_edge_ratio x block size can only lie on the region's
+        // outline, where no neighbour exists to merge with (contacts on such edges are
+        // ill-defined once a step moves further than the edge is long).
+        if ((p - q).norm() < settings.min_edge_ratio * settings.block_size) {
+          EXPECT_TRUE(on_outline(0.5 * (p + q), region.polygon)) << "trial " << trial << ": short inside edge";
+        }
+      }
     }
     // No two blocks overlap: the scene check does it with a grid, as for user scenes.
     Scene scene;
