@@ -78,7 +78,7 @@ std::pair<int, int> first_self_intersection(const std::vector<Vec2>& polygon) {
   return {-1, -1};
 }
 
-bool point_in_polygon(const Vec2& p, const std::vector<Vec2>& polygon) {
+bool point_in_polygon(const Vec2& p, std::span<const Vec2> polygon) {
   bool inside = false;
   const size_t n = polygon.size();
   for (size_t i = 0, j = n - 1; i < n; j = i++) {

@@ -1,6 +1,7 @@
 // Polygon geometry used by the block system and the scene checks.
 #pragma once
 
+#include <span>
 #include <vector>
 
 #include "forward/scene.hpp"
@@ -37,7 +38,7 @@ std::pair<int, int> first_self_intersection(const std::vector<Vec2>& polygon);
 // Strict interior test (even-odd rule); points on the boundary count as outside
 // unless within `tolerance` of it is requested as inside via the return of
 // distance_to_boundary().
-bool point_in_polygon(const Vec2& p, const std::vector<Vec2>& polygon);
+bool point_in_polygon(const Vec2& p, std::span<const Vec2> polygon);
 double distance_to_boundary(const Vec2& p, const std::vector<Vec2>& polygon);
 
 // Area of the intersection of two simple polygons would need clipping; for overlap

@@ -2,7 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <span>
 #include <unordered_map>
+
+#include "forward/geometry.hpp"
 
 namespace ddafit {
 namespace {
@@ -14,6 +17,10 @@ constexpr double kWedgeTolerance = 0.15;
 // Deepest penetration, as a fraction of the search distance, of a vertex that lies beyond
 // the end of an edge and still counts as touching it.
 constexpr double kExtensionDepth = 0.1;
+
+// Penetrations deeper than this fraction of the search distance are checked against
+// block j's polygon (shallower ones include the exact touching of a tiled mass at t = 0).
+constexpr double kInsideCheckDepth = 1e-3;
 
 struct EdgeGrid {
   double cell = 1.0;
@@ -156,6 +163,24 @@ std::string find_contacts(const BlockSystem& s, const ContactSearch& search,
         const Vec2 da = s.vertices[s.next_vertex(a)] - s.vertices[a];
         const Vec2 neighbour_out = Vec2(da.y(), -da.x()).normalized();
         if ((p1 - s.vertices[corner]).dot(neighbour_out) > 0.0) continue;
+        // Beyond a reflex corner of block j (a valley floor meeting the opposite wall) the
+        // extended line runs inside the block: a corner sliding along the floor into the
+        // wall read 2 cm "deep" on the floor's extension while 0.47 m inside the wall.
+        // Where the vertex projects onto the neighbouring edge, that edge measures it.
+        const Vec2 db = s.vertices[s.next_vertex(s.next_vertex(a))] - s.vertices[s.next_vertex(a)];
+        if (da.x() * db.y() - da.y() * db.x() < 0.0) {
+          const double along = (p1 - s.vertices[a]).dot(da) / da.squaredNorm();
+          if (along >= 0.0 && along <= 1.0) continue;
+        }
+      }
+      // A vertex deeper than a hair behind the edge's line must be inside block j: near
+      // a corner of j the line of one edge passes under a vertex that is beside the
+      // block, outside its other edge (a Vajont corner read 0.6 m deep that way).
+      if (gap < -kInsideCheckDepth * rho) {
+        const Block& block_j = s.blocks[bj];
+        if (!point_in_polygon(p1, std::span<const Vec2>(s.vertices).subspan(block_j.first_vertex,
+                                                                             block_j.vertex_count)))
+          continue;
       }
       if (wedge_a.dot(outward) < -kWedgeTolerance || wedge_b.dot(outward) < -kWedgeTolerance) continue;
       // One contact per (vertex, block): keep the edge with the least penetration,
