@@ -41,6 +41,11 @@ struct SimulationOptions {
   // and back-slips smaller than this do not change a contact's state (assemble.hpp).
   double contact_tolerance_ratio = 1e-7;
 
+  // Speed, m/s, at which a contact found already deeper than the step can mend (a
+  // corner that came round a corner) is pushed back out: its spring is unloaded at
+  // its start-of-step gap plus max_pushout_speed x dt (forward/step/assemble.hpp).
+  double max_pushout_speed = 1.0;
+
   // Contact search distance as a multiple of the largest displacement allowed per step.
   double search_distance_factor = 2.5;
 

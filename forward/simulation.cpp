@@ -130,7 +130,8 @@ SimulationResult simulate(const Scene& scene, const SimulationHooks& hooks) {
   // The springs and loads of one attempt at a step of length dt.
   const auto step_parameters = [&](double dt) {
     return StepParameters{dt, control.penalty, options.shear_penalty_ratio * control.penalty, scene.gravity,
-                          options.contact_tolerance_ratio * control.max_displacement};
+                          options.contact_tolerance_ratio * control.max_displacement,
+                          options.max_pushout_speed * dt};
   };
   std::vector<Contact> contacts, saved;
   BlockSparseMatrix k;

@@ -365,6 +365,7 @@ std::string validate_options(const SimulationOptions& o) {
        "must be in [0, 100]"},
       {"contact_tolerance_ratio", o.contact_tolerance_ratio,
        o.contact_tolerance_ratio >= 0 && o.contact_tolerance_ratio <= 0.1, "must be in [0, 0.1]"},
+      {"max_pushout_speed", o.max_pushout_speed, positive(o.max_pushout_speed), "must be > 0 m/s"},
       {"search_distance_factor", o.search_distance_factor,
        o.search_distance_factor >= 1 && std::isfinite(o.search_distance_factor), "must be >= 1"},
   };

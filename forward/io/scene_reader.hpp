@@ -81,6 +81,7 @@ inline constexpr ControlKey kControlKeys[] = {
     {"max_penalty_raises", &SimulationOptions::max_penalty_raises},
     {"contact_tolerance_ratio", &SimulationOptions::contact_tolerance_ratio},
     {"search_distance_factor", &SimulationOptions::search_distance_factor},
+    {"max_pushout_speed", &SimulationOptions::max_pushout_speed},
     {"settle_passes", &SimulationOptions::settle_passes},
     {"plane_strain", &SimulationOptions::plane_strain},
     {"reuse_factorization", &SimulationOptions::reuse_factorization},

@@ -88,7 +88,9 @@ void assemble(const BlockSystem& s, const std::vector<Contact>& contacts, const 
     const ContactLinearization lin = linearize_contact(s, c);
     // Normal spring on d_n = A / l: stiffness p / l^2 on A.
     const double l2 = lin.edge_length * lin.edge_length;
-    add_spring(bi, bj, lin.e, lin.g, lin.area0, step.penalty / l2, k, f);
+    // Shifted so that the spring is unloaded at spring_reference() (assemble.hpp).
+    const double area0 = lin.area0 - spring_reference(c, step) * lin.edge_length;
+    add_spring(bi, bj, lin.e, lin.g, area0, step.penalty / l2, k, f);
     if (c.state == ContactState::Locked) {
       add_spring(bi, bj, lin.es, lin.gs, lin.shear0, step.shear_penalty, k, f);
     } else {

@@ -25,7 +25,8 @@ ContactCheck check_contacts(const BlockSystem& s, std::vector<Contact>& contacts
     const double force_before = c.normal_force;
     const Interface& face = s.interfaces[c.interface];
     const double tension_cap = c.bonded ? face.tensile_strength * c.bond_length : 0.0;
-    const double compression = -step.penalty * c.normal_gap;  // N, negative in tension
+    // N, negative in tension; the spring is unloaded at spring_reference (assemble.hpp).
+    const double compression = -step.penalty * (c.normal_gap - spring_reference(c, step));
 
     const bool stays_open = before == ContactState::Open && c.normal_gap > -step.contact_tolerance;
     if (-compression > tension_cap || stays_open) {
