@@ -134,6 +134,30 @@ TEST(Cli, UnknownOptionExitsTwo) {
   EXPECT_EQ(r.code, 2);
 }
 
+TEST(Cli, BenchWritesOneCsvRowPerSize) {
+  // Contract of `ddafit bench`: one row per block size with the run's counters. Section I
+  // for 0.02 s keeps it to a second; a run that moves at all takes steps and passes.
+  const fs::path out = fs::path(DDAFIT_TEST_TMP) / "bench" / "out";
+  const std::string vajont = std::string(DDAFIT_CASES_DIR) + "/vajont/vajont.yaml";
+  const CommandResult r = ddafit("bench " + vajont + " --sizes 34.3 --duration 0.02 --out " + out.string(), "bench");
+  ASSERT_EQ(r.code, 0) << r.err;
+  std::istringstream csv(slurp(out / "bench.csv"));
+  std::string header, row, extra;
+  std::getline(csv, header);
+  std::getline(csv, row);
+  EXPECT_FALSE(std::getline(csv, extra) && !extra.empty()) << "one size, one row";
+  EXPECT_EQ(header.rfind("block_size,blocks,steps,open_close_iterations,", 0), 0u) << header;
+  EXPECT_EQ(row.rfind("34.3,183,", 0), 0u) << "section I has 183 free blocks: " << row;
+  EXPECT_NE(row.find(",completed"), std::string::npos) << row;
+}
+
+TEST(Cli, BenchRefusesANonPositiveDuration) {
+  const std::string vajont = std::string(DDAFIT_CASES_DIR) + "/vajont/vajont.yaml";
+  const CommandResult r = ddafit("bench " + vajont + " --duration 0", "bench_bad");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("--duration"), std::string::npos) << r.err;
+}
+
 TEST(Cli, VerifyPrintsRowsAndPasses) {
   const CommandResult r = ddafit("verify --only thrown", "verify_thrown");
   EXPECT_EQ(r.code, 0) << r.out << r.err;

@@ -69,6 +69,16 @@ struct ScanArgs {
 };
 int run_scan(const ScanArgs& args);
 
+struct BenchArgs {
+  std::string scene;
+  // Mean block sizes, m: the seed's Vajont sections I-X by default.
+  std::vector<double> sizes = {34.3, 23.1, 16.0, 12.1, 9.8, 8.9, 8.2, 7.4, 6.6, 5.7};
+  double duration = 1.0;  // s of slide simulated per size
+  std::string out = "ddafit-bench";
+  std::vector<std::string> sets;
+};
+int run_bench(const BenchArgs& args);
+
 struct VerifyArgs {
   std::string only;  // run only checks whose name contains this
   bool stability_map = false;  // print the incline stability map instead

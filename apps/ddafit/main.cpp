@@ -66,6 +66,14 @@ int main(int argc, char** argv) {
   scan->add_flag("--resume", sc.resume, "reuse the evaluations cached in the output folder");
 
   VerifyArgs ver;
+  BenchArgs be;
+  CLI::App* bench = app.add_subcommand("bench", "forward cost across block sizes; writes bench.csv and bench.png");
+  bench->add_option("scene", be.scene, "region scene file (YAML) with mesh.block_size")->required();
+  bench->add_option("--sizes", be.sizes, "mean block sizes, m (default: Vajont sections I-X)")->delimiter(',');
+  bench->add_option("--duration", be.duration, "s of slide simulated per size")->capture_default_str();
+  bench->add_option("--out", be.out, "output folder")->capture_default_str();
+  bench->add_option("--set", be.sets, "override a scene value, KEY=VALUE (repeatable)");
+
   CLI::App* verify = app.add_subcommand("verify", "run the built-in analytic verification suite");
   verify->add_option("--only", ver.only, "run only the checks whose name contains this text");
   verify->add_flag("--stability-map", ver.stability_map,
@@ -85,6 +93,7 @@ int main(int argc, char** argv) {
   if (*verify) return run_verify(ver);
   if (*mesh_cmd) return run_mesh(mesh);
   if (*stable) return run_stable(st);
+  if (*bench) return run_bench(be);
   if (*plot) return run_plot(pl);
   if (*invert) return run_invert(inv);
   if (*scan) return run_scan(sc);
