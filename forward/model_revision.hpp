@@ -5,6 +5,6 @@
 
 namespace ddafit {
 
-inline constexpr const char* kModelRevision = "2026-11-22.2";
+inline constexpr const char* kModelRevision = "2026-11-22.3";
 
 }  // namespace ddafit

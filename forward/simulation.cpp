@@ -225,7 +225,9 @@ SimulationResult simulate(const Scene& scene, const SimulationHooks& hooks) {
         factor = std::clamp(0.8 * control.max_displacement / moved, 0.1, 0.9);
       } else {
         int deepest = -1;
-        const double depth = max_penetration(contacts, &deepest);
+        // Half the search distance: deeper, a contact is close to being lost altogether.
+        const double depth =
+            max_penetration(contacts, step, control.max_penetration, 0.5 * search.search_distance, &deepest);
         if (depth > control.max_penetration) {
           const std::string where = describe_contact(system, contacts[deepest]);
           if (raise_penalty(control, options)) {

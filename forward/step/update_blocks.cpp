@@ -38,15 +38,18 @@ void displace_block(BlockSystem& s, int b, const Vec6& db, bool measured) {
   refresh_block_geometry(s, b);
 }
 
-double max_penetration(const std::vector<Contact>& contacts, int* which) {
+double max_penetration(const std::vector<Contact>& contacts, const StepParameters& step, double max_penetration,
+                       double hard_limit, int* which) {
   double deepest = 0.0;
   for (int k = 0; k < static_cast<int>(contacts.size()); ++k) {
     const Contact& c = contacts[k];
     // Only contacts this step drove deeper: one found already deep (a corner that came
     // round a corner) cannot be mended by a stiffer spring within the step, only pushed
     // back out over the next steps.
-    if (c.state != ContactState::Open && c.normal_gap < c.start_gap && -c.normal_gap > deepest) {
-      deepest = -c.normal_gap;
+    const double depth = std::max(spring_reference(c, step) - c.normal_gap,
+                                  -c.normal_gap - (hard_limit - max_penetration));
+    if (c.state != ContactState::Open && c.normal_gap < c.start_gap && depth > deepest) {
+      deepest = depth;
       if (which) *which = k;
     }
   }
