@@ -61,17 +61,23 @@ void print_plan(const inverse::Study& study, int budget, const std::string& out)
                            out);
 }
 
+// Reads and checks a study against its scene; on failure prints the one-line error.
+bool load_study(const std::string& path, inverse::Study& study) {
+  try {
+    study = inverse::read_study(path);
+    inverse::check_study_against_scene(study);
+    return true;
+  } catch (const inverse::StudyError& e) {
+    std::cerr << e.what() << "\n";
+    return false;
+  }
+}
+
 }  // namespace
 
 int run_invert(const InvertArgs& args) {
   inverse::Study study;
-  try {
-    study = inverse::read_study(args.study);
-    inverse::check_study_against_scene(study);
-  } catch (const inverse::StudyError& e) {
-    std::cerr << e.what() << "\n";
-    return kExitBadInput;
-  }
+  if (!load_study(args.study, study)) return kExitBadInput;
   const int budget = args.budget > 0 ? args.budget : study.method.budget;
   if (args.check) {
     print_plan(study, budget, args.out);
@@ -135,19 +141,9 @@ int run_invert(const InvertArgs& args) {
   return kExitSuccess;
 }
 
-}  // namespace ddafit::app
-
-namespace ddafit::app {
-
 int run_scan(const ScanArgs& args) {
   inverse::Study study;
-  try {
-    study = inverse::read_study(args.study);
-    inverse::check_study_against_scene(study);
-  } catch (const inverse::StudyError& e) {
-    std::cerr << e.what() << "\n";
-    return kExitBadInput;
-  }
+  if (!load_study(args.study, study)) return kExitBadInput;
   inverse::InversionOptions options;
   options.out_dir = args.out;
   options.resume = args.resume;
