@@ -4,6 +4,7 @@
 // rely on linearity and respects the bounds.
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 
 #include "inverse/forward_call.hpp"
 #include "inverse/inversion.hpp"
@@ -36,7 +37,27 @@ ProfileRange range_of(const std::vector<ProfilePoint>& pts, size_t at_min, doubl
   return r;
 }
 
+std::vector<ProfilePoint> completed(const std::vector<ProfilePoint>& profile) {
+  std::vector<ProfilePoint> good;
+  std::copy_if(profile.begin(), profile.end(), std::back_inserter(good), [](const ProfilePoint& q) { return !q.failed; });
+  return good;
+}
+
+size_t index_of_min(const std::vector<ProfilePoint>& pts) {
+  size_t at_min = 0;
+  for (size_t k = 1; k < pts.size(); ++k)
+    if (pts[k].chi2 < pts[at_min].chi2) at_min = k;
+  return at_min;
+}
+
 }  // namespace
+
+ProfileRange profile_range(const std::vector<ProfilePoint>& profile, double threshold) {
+  const std::vector<ProfilePoint> good = completed(profile);
+  if (good.empty()) return {};
+  const size_t at_min = index_of_min(good);
+  return range_of(good, at_min, good[at_min].chi2, threshold);
+}
 
 BoundingFriction profile_friction(Objective& objective, const Study& study, const std::vector<double>& best,
                                   int parameter, int points, bool reoptimize, int budget) {
@@ -85,16 +106,18 @@ BoundingFriction profile_friction(Objective& objective, const Study& study, cons
 
   // Bisect each crossing of Delta chi^2 = 1 and 4 down to one resolution, so the range
   // does not depend on the scan spacing (about log2(spacing / resolution) runs each).
+  // A failed run says nothing about the fit there, so it neither ends a range nor marks a
+  // crossing: the ranges are read off the runs that completed (on the Vajont profile one
+  // failure at 57 % had cut the Delta chi^2 <= 4 range off at 56 % although 58-60 % fit).
   for (int extra = 0; extra < 48; ++extra) {
-    size_t at_min = 0;
-    for (size_t k = 1; k < f.profile.size(); ++k)
-      if (f.profile[k].chi2 < f.profile[at_min].chi2) at_min = k;
-    const double chi2_min = f.profile[at_min].chi2;
-    f.delta1 = range_of(f.profile, at_min, chi2_min, 1.0);
-    f.delta4 = range_of(f.profile, at_min, chi2_min, 4.0);
+    const std::vector<ProfilePoint> good = completed(f.profile);
+    if (good.empty()) break;
+    const double chi2_min = good[index_of_min(good)].chi2;
+    f.delta1 = profile_range(f.profile, 1.0);
+    f.delta4 = profile_range(f.profile, 4.0);
     double split = NAN;
-    for (size_t k = 0; k + 1 < f.profile.size() && std::isnan(split); ++k) {
-      const ProfilePoint &a = f.profile[k], &b = f.profile[k + 1];
+    for (size_t k = 0; k + 1 < good.size() && std::isnan(split); ++k) {
+      const ProfilePoint &a = good[k], &b = good[k + 1];
       const bool crosses = (a.chi2 - chi2_min <= 1.0) != (b.chi2 - chi2_min <= 1.0) ||
                            (a.chi2 - chi2_min <= 4.0) != (b.chi2 - chi2_min <= 4.0);
       if (crosses && b.value - a.value > 1.5 * p.resolution)

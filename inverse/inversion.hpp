@@ -110,6 +110,11 @@ ScanResult run_scan(const Study& study, const InversionOptions& options, const s
                     const ForwardModel& forward = run_forward);
 
 // The parts, for tests.
+// The connected range of the profiled parameter around the best completed point where
+// chi^2 stays within threshold of it, crossings interpolated in sqrt(Delta chi^2). Failed
+// runs are skipped: they say nothing about the fit there.
+ProfileRange profile_range(const std::vector<ProfilePoint>& profile, double threshold);
+
 BoundingFriction profile_friction(Objective& objective, const Study& study, const std::vector<double>& best,
                                   int parameter, int points, bool reoptimize, int budget);
 CovarianceReport covariance_at(Objective& objective, const Study& study, const std::vector<double>& best,

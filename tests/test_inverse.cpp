@@ -149,6 +149,30 @@ TEST(InverseTwin, BoundingFrictionBracketsTheTruthAndAgreesWithTheCovariance) {
   EXPECT_NEAR(c.standard_deviation[0], half_width, 0.25 * half_width);
 }
 
+TEST(InverseProfile, AFailedRunNeitherEndsNorCutsTheRange) {
+  // chi^2 = (x - 50)^2 / 25 on a grid of 1: Delta chi^2 <= 4 is exactly [40, 60]. A failed
+  // run at 57 (the misfit a failure is counted as) must not end the range there: it says
+  // nothing about the fit (the Vajont profile lost 58-60 % that way). Exact to round-off,
+  // since sqrt(Delta chi^2) is linear in x and the interpolation is in sqrt(Delta).
+  std::vector<ProfilePoint> profile;
+  for (int x = 30; x <= 70; ++x) {
+    ProfilePoint p;
+    p.value = x;
+    p.chi2 = (x - 50.0) * (x - 50.0) / 25.0;
+    if (x == 57) {
+      p.chi2 = kFailedMisfit;
+      p.failed = true;
+    }
+    profile.push_back(p);
+  }
+  const ProfileRange r4 = profile_range(profile, 4.0);
+  EXPECT_NEAR(r4.low, 40.0, 1e-9);
+  EXPECT_NEAR(r4.high, 60.0, 1e-9);
+  const ProfileRange r1 = profile_range(profile, 1.0);
+  EXPECT_NEAR(r1.high, 55.0, 1e-9);
+  EXPECT_FALSE(r4.high_at_bound);
+}
+
 TEST(InverseCovariance, WarnsWhenTheDataCannotConstrainTheParameters) {
   // One observation of slider A for two parameters: the joint roughness (slider B) moves no
   // residual, so there are no degrees of freedom and J has a zero column.
