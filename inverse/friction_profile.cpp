@@ -120,8 +120,22 @@ BoundingFriction profile_friction(Objective& objective, const Study& study, cons
       const ProfilePoint &a = good[k], &b = good[k + 1];
       const bool crosses = (a.chi2 - chi2_min <= 1.0) != (b.chi2 - chi2_min <= 1.0) ||
                            (a.chi2 - chi2_min <= 4.0) != (b.chi2 - chi2_min <= 4.0);
-      if (crosses && b.value - a.value > 1.5 * p.resolution)
-        split = a.value + std::round(0.5 * (b.value - a.value) / p.resolution) * p.resolution;
+      if (!crosses || b.value - a.value <= 1.5 * p.resolution) continue;
+      // The midpoint on the resolution grid, or the nearest free grid value when a failed
+      // run already holds it (else the bisection would ask for that run again and again).
+      const double mid = a.value + std::round(0.5 * (b.value - a.value) / p.resolution) * p.resolution;
+      for (int step = 0; step < 64 && std::isnan(split); ++step) {
+        for (const double candidate : {mid - step * p.resolution, mid + step * p.resolution}) {
+          const bool inside = candidate > a.value + 0.5 * p.resolution && candidate < b.value - 0.5 * p.resolution;
+          const bool taken = std::any_of(f.profile.begin(), f.profile.end(), [&](const ProfilePoint& q) {
+            return std::abs(q.value - candidate) < 0.5 * p.resolution;
+          });
+          if (inside && !taken) {
+            split = candidate;
+            break;
+          }
+        }
+      }
     }
     if (std::isnan(split)) break;
     add_point(split);
