@@ -289,6 +289,9 @@ SimulationResult simulate(const Scene& scene, const SimulationHooks& hooks) {
     }
   }
   run.simulated_time = time;
+  run.symbolic_analyses = solver.counters().symbolic_analyses;
+  run.factorizations = solver.counters().factorizations;
+  run.cg_solves = solver.counters().cg_solves;
   run.final_penalty = control.penalty;
   profile.total = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
   return result;

@@ -35,6 +35,9 @@ struct RunCounters {
   long step_cuts = 0;       // steps redone with a shorter time step
   long penalty_raises = 0;  // steps redone with a stiffer penalty
   long unsettled_contacts = 0;  // contact-steps accepted while still changing state
+  long symbolic_analyses = 0;   // sparse orderings: the contact graph changed
+  long factorizations = 0;      // Cholesky factorisations (one per open-close pass unless CG)
+  long cg_solves = 0;           // passes solved by CG on an older factor (reuse_factorization)
   double final_penalty = 0.0;
   double smallest_step = 0.0;
   double largest_step = 0.0;

@@ -46,7 +46,7 @@ SparseSolver::~SparseSolver() {
 }
 
 bool SparseSolver::solve(const BlockSparseMatrix& k, const Eigen::VectorXd& rhs, Eigen::VectorXd& x,
-                         std::string& reason, SolveStats* stats) {
+                         std::string& reason) {
   const int nb = k.size;
   const int n = 6 * nb;
   if (n == 0) {
@@ -96,14 +96,15 @@ bool SparseSolver::solve(const BlockSparseMatrix& k, const Eigen::VectorXd& rhs,
     x = last_solution_;
     int iterations = 0;
     const bool converged = preconditioned_cg(a, rhs, x, iterations);
-    if (stats) stats->cg_iterations = iterations;
+    counters_.cg_iterations += iterations;
     if (converged && x.allFinite()) {
+      ++counters_.cg_solves;
       cholmod_free_sparse(&a, &common_);
       last_solution_ = x;
       return true;
     }
   }
-  const bool ok = refactorize(a, n, reason, stats);
+  const bool ok = refactorize(a, n, reason);
   cholmod_free_sparse(&a, &common_);
   if (!ok) return false;
 
@@ -126,7 +127,7 @@ bool SparseSolver::solve(const BlockSparseMatrix& k, const Eigen::VectorXd& rhs,
   return true;
 }
 
-bool SparseSolver::refactorize(cholmod_sparse* a, int n, std::string& reason, SolveStats* stats) {
+bool SparseSolver::refactorize(cholmod_sparse* a, int n, std::string& reason) {
   const auto start = std::chrono::steady_clock::now();
   const auto* ap = static_cast<const int*>(a->p);
   const auto* ai = static_cast<const int*>(a->i);
@@ -141,10 +142,8 @@ bool SparseSolver::refactorize(cholmod_sparse* a, int n, std::string& reason, So
     pattern_columns_.assign(ap, ap + n + 1);
     pattern_rows_.assign(ai, ai + pos);
   }
-  if (stats) {
-    stats->reused_analysis = same_pattern;
-    stats->refactorized = true;
-  }
+  counters_.symbolic_analyses += !same_pattern;
+  ++counters_.factorizations;
   bool ok = factor_ != nullptr && cholmod_factorize(a, factor_, &common_) != 0;
   if (ok && (common_.status == CHOLMOD_NOT_POSDEF || factor_->minor < static_cast<size_t>(n))) {
     ok = false;

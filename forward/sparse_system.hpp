@@ -25,10 +25,12 @@ struct BlockSparseMatrix {
   void add(int a, int b, const Mat6& m);
 };
 
-struct SolveStats {
-  bool reused_analysis = false;
-  bool refactorized = false;  // false: solved by conjugate gradients on an older factor
-  int cg_iterations = 0;
+// What a solver has done so far: the cost drivers of docs/performance.md.
+struct SolverCounters {
+  long symbolic_analyses = 0;  // fill-reducing orderings (the contact graph changed)
+  long factorizations = 0;     // numeric Cholesky factorisations
+  long cg_solves = 0;          // solves finished by conjugate gradients on an older factor
+  long cg_iterations = 0;      // all CG iterations, converged or not
 };
 
 // How SparseSolver reuses its work between solves.
@@ -59,15 +61,18 @@ class SparseSolver {
   // Solves K x = rhs. Returns false with a reason when K is not positive definite or
   // the result is not finite.
   bool solve(const BlockSparseMatrix& k, const Eigen::VectorXd& rhs, Eigen::VectorXd& x,
-             std::string& reason, SolveStats* stats = nullptr);
+             std::string& reason);
+
+  const SolverCounters& counters() const { return counters_; }
 
  private:
   // Conjugate gradients on K with the stored factor as preconditioner, starting from x;
   // false when they do not converge within the affordable iterations.
   bool preconditioned_cg(cholmod_sparse* a, const Eigen::VectorXd& rhs, Eigen::VectorXd& x, int& iterations);
-  bool refactorize(cholmod_sparse* a, int n, std::string& reason, SolveStats* stats);
+  bool refactorize(cholmod_sparse* a, int n, std::string& reason);
 
   SolverOptions options_;
+  SolverCounters counters_;
   cholmod_common common_;
   cholmod_factor* factor_ = nullptr;
   Eigen::VectorXd last_solution_;

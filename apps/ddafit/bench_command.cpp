@@ -85,14 +85,15 @@ int run_bench(const BenchArgs& args) {
   }
   auto csv = fmt::output_file(args.out + "/bench.csv");
   csv.print("block_size,blocks,steps,open_close_iterations,simulated_time,step_cuts,penalty_raises,wall,"
-            "settle,find_contacts,assemble,solve,check_contacts,update,peak_memory_mib,status\n");
+            "settle,find_contacts,assemble,solve,check_contacts,update,peak_memory_mib,factorizations,"
+            "symbolic_analyses,status\n");
   for (const BenchRow& row : rows) {
     const StepProfile& p = row.summary.profile;
     const RunCounters& r = row.summary.run;
-    csv.print("{},{},{},{},{},{},{},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:.1f},{}\n", row.block_size,
-              row.blocks, r.steps, r.open_close_iterations, r.simulated_time, r.step_cuts, r.penalty_raises,
-              p.total, p.settle, p.find_contacts, p.assemble, p.solve, p.check_contacts, p.update, row.peak_mib,
-              row.summary.status == RunStatus::Completed ? "completed" : "failed");
+    csv.print("{},{},{},{},{},{},{},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:.1f},{},{},{}\n",
+              row.block_size, row.blocks, r.steps, r.open_close_iterations, r.simulated_time, r.step_cuts,
+              r.penalty_raises, p.total, p.settle, p.find_contacts, p.assemble, p.solve, p.check_contacts, p.update,
+              row.peak_mib, r.factorizations, r.symbolic_analyses, row.summary.status == RunStatus::Completed ? "completed" : "failed");
   }
   csv.close();
   std::string reason;
