@@ -90,9 +90,14 @@ int run_invert(const InvertArgs& args) {
   options.model_version = std::string(DDAFIT_VERSION) + "+" + kModelRevision;
   if (!args.quiet) {
     options.on_progress = [](const inverse::Progress& p) {
-      std::cerr << fmt::format("\r  evaluation {} of <= {} ({} cached)  best chi2 {:.4g}  {:.1f} s/run  ETA {}   ",
-                               p.evaluations, p.planned, p.cached, p.best_chi2, p.mean_run_seconds,
-                               clock_text(p.eta_seconds))
+      // The plan counts the fits and the profile grid; the bisection of the profile's
+      // crossings comes on top (a few runs each), so past the plan there is no ETA.
+      const std::string where = p.evaluations <= p.planned
+                                    ? fmt::format("of <= {}", p.planned)
+                                    : fmt::format("(refining the profile past the {} planned)", p.planned);
+      const std::string eta = p.evaluations <= p.planned ? "ETA " + clock_text(p.eta_seconds) : "";
+      std::cerr << fmt::format("\r  evaluation {} {} ({} cached)  best chi2 {:.4g}  {:.1f} s/run  {}   ",
+                               p.evaluations, where, p.cached, p.best_chi2, p.mean_run_seconds, eta)
                 << std::flush;
     };
   }
