@@ -176,6 +176,7 @@ bool SparseSolver::preconditioned_cg(cholmod_sparse* a, const Eigen::VectorXd& r
 
   cholmod_dense* xd = cholmod_allocate_dense(n, 1, n, CHOLMOD_REAL, &common_);
   cholmod_dense* rd = cholmod_allocate_dense(n, 1, n, CHOLMOD_REAL, &common_);
+  cholmod_dense* qd = cholmod_allocate_dense(n, 1, n, CHOLMOD_REAL, &common_);
   auto* xp = static_cast<double*>(xd->x);
   auto* rp = static_cast<double*>(rd->x);
   Eigen::Map<Eigen::VectorXd> r(rp, n);
@@ -199,10 +200,8 @@ bool SparseSolver::preconditioned_cg(cholmod_sparse* a, const Eigen::VectorXd& r
     rz = rz_new;
     // q = K p
     std::copy(p.data(), p.data() + n, xp);
-    cholmod_dense* qd = cholmod_allocate_dense(n, 1, n, CHOLMOD_REAL, &common_);
     cholmod_sdmult(a, 0, one, zero, xd, qd, &common_);
     q = Eigen::Map<Eigen::VectorXd>(static_cast<double*>(qd->x), n);
-    cholmod_free_dense(&qd, &common_);
     const double pq = p.dot(q);
     ++iterations;
     if (!(pq > 0.0)) break;  // not positive definite along p: let the factorisation decide
@@ -213,6 +212,7 @@ bool SparseSolver::preconditioned_cg(cholmod_sparse* a, const Eigen::VectorXd& r
   }
   cholmod_free_dense(&xd, &common_);
   cholmod_free_dense(&rd, &common_);
+  cholmod_free_dense(&qd, &common_);
   if (iterations > 0) {
     const double per = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() / iterations;
     iteration_seconds_ = iteration_seconds_ > 0.0 ? 0.9 * iteration_seconds_ + 0.1 * per : per;
