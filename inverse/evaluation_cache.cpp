@@ -32,6 +32,12 @@ struct Statement {
   }
   ~Statement() { sqlite3_finalize(s); }
   void text(int i, const std::string& v) { sqlite3_bind_text(s, i, v.c_str(), static_cast<int>(v.size()), SQLITE_TRANSIENT); }
+  // Parameters ?1-?3: the row key (model version, scene hash, exact point).
+  void key(const std::string& model_version, const std::string& scene_hash, const std::string& point) {
+    text(1, model_version);
+    text(2, scene_hash);
+    text(3, point);
+  }
 };
 
 constexpr int kHistoryColumns = 8;  // time, point, x, y, ux, uy, vx, vy
@@ -104,9 +110,7 @@ std::optional<CachedRun> EvaluationCache::find(const std::string& key) const {
                "SELECT status, message, summary, wall_seconds, history FROM evaluations"
                " WHERE model_version = ?1 AND scene_hash = ?2 AND point = ?3",
                path_);
-  st.text(1, model_version_);
-  st.text(2, scene_hash_);
-  st.text(3, key);
+  st.key(model_version_, scene_hash_, key);
   const int rc = sqlite3_step(st.s);
   if (rc == SQLITE_DONE) return std::nullopt;
   if (rc != SQLITE_ROW) throw CacheError(path_ + ": evaluation cache: " + sqlite3_errmsg(db_));
@@ -145,9 +149,7 @@ void EvaluationCache::store(const std::string& key, const SimulationResult& run,
                "INSERT OR REPLACE INTO evaluations (model_version, scene_hash, point, status, message, summary,"
                " wall_seconds, history) VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8)",
                path_);
-  st.text(1, model_version_);
-  st.text(2, scene_hash_);
-  st.text(3, key);
+  st.key(model_version_, scene_hash_, key);
   sqlite3_bind_int(st.s, 4, static_cast<int>(run.summary.status));
   st.text(5, run.summary.message);
   st.text(6, summary_json(run.summary).dump());

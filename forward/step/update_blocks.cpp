@@ -38,7 +38,7 @@ void displace_block(BlockSystem& s, int b, const Vec6& db, bool measured) {
   refresh_block_geometry(s, b);
 }
 
-double max_penetration(const std::vector<Contact>& contacts, const StepParameters& step, double max_penetration,
+double max_penetration(const std::vector<Contact>& contacts, const StepParameters& step, double limit,
                        double hard_limit, int* which) {
   double deepest = 0.0;
   for (int k = 0; k < static_cast<int>(contacts.size()); ++k) {
@@ -47,7 +47,7 @@ double max_penetration(const std::vector<Contact>& contacts, const StepParameter
     // round a corner) cannot be mended by a stiffer spring within the step, only pushed
     // back out over the next steps.
     const double depth = std::max(spring_reference(c, step) - c.normal_gap,
-                                  -c.normal_gap - (hard_limit - max_penetration));
+                                  -c.normal_gap - (hard_limit - limit));
     if (c.state != ContactState::Open && c.normal_gap < c.start_gap && depth > deepest) {
       deepest = depth;
       if (which) *which = k;
