@@ -24,10 +24,10 @@ void displace_block(BlockSystem& system, int b, const Vec6& db, bool measured);
 
 // Deepest penetration (> 0) among closed contacts that the step made deeper, and which
 // contact it is. Depth counts from where the spring is unloaded (spring_reference), so
-// a deep contact being pushed out is judged on what the step adds; but a contact deeper
-// than hard_limit in all counts as that much deeper than `limit` (the penetration
-// limit the caller compares against) (a penalty too soft lets a
-// block sink a little further every step, each step mending nothing).
+// a deep contact being pushed out is judged on what the step adds. A contact deeper than
+// hard_limit in all reads as at least as deep as `limit` (the limit the caller compares
+// against): a penalty too soft would otherwise let a block sink a little further every
+// step, each step mending nothing.
 double max_penetration(const std::vector<Contact>& contacts, const StepParameters& step, double limit,
                        double hard_limit, int* which = nullptr);
 
