@@ -1,10 +1,12 @@
 // The forward model's revision: part of the inversion cache's key, so that evaluations
 // cached by an older physics are never replayed. Bump it with every change that alters
-// what simulate() returns for some scene (contact rules, integration, defaults).
+// what simulate() returns for some scene (contact rules, integration, defaults). The
+// solver that runs is fixed by the scene, the parameters and this revision (the Auto rule
+// lives in forward/simulation.cpp), so the key identifies it.
 #pragma once
 
 namespace ddafit {
 
-inline constexpr const char* kModelRevision = "2026-11-22.3";
+inline constexpr const char* kModelRevision = "2026-11-23.1";
 
 }  // namespace ddafit

@@ -6,7 +6,23 @@
 
 namespace ddafit {
 
+// Which solver advances the blocks (docs/theory.md, "Two solvers").
+enum class Integrator {
+  Implicit,  // Shi's global solve with the open-close iteration: exact on the analytic checks
+  Substep,   // velocity-level impulses in substeps: cost proportional to the contacts
+  Auto,      // Substep from kAutoSubstepBlocks free blocks up, Implicit below
+};
+
+// The rule of Integrator::Auto: from this many free blocks the implicit solver's global
+// factorisation (cost ~ N^2.7 on Vajont sections I-II) loses to the substep solver's
+// per-contact sweeps (docs/speed-accuracy.md).
+inline constexpr int kAutoSubstepBlocks = 100;
+
+const char* to_string(Integrator integrator);
+
 struct SimulationOptions {
+  // time.integrator: implicit | substep | auto.
+  Integrator integrator = Integrator::Auto;
   // Largest vertex displacement allowed in one step, as a fraction of half the model
   // size (Shi's "g2"; field notes: 0.001-0.01). A step that moves further is redone
   // with a shorter time step.
@@ -63,6 +79,27 @@ struct SimulationOptions {
   // converged in only 26 % of its attempts and the run took 1.36x as long
   // (docs/performance.md). false refactorises on every pass, as published DDA codes do.
   bool reuse_factorization = false;
+
+  // --- Substep solver (forward/substep/) ---
+  // time.substeps: velocity-level substeps per step. Each substep integrates velocities,
+  // makes one biased sweep over the contacts, moves the blocks and makes one relax sweep
+  // (Box2D v3's soft step); more substeps make stacks stiffer and contacts more accurate.
+  int substeps = 4;
+
+  // Soft contact constraint: stiffness as a frequency, Hz, and damping ratio. 0 Hz means
+  // automatic: min(30, 0.25 x substep rate), Box2D's rule (a contact spring at a quarter of
+  // the substep rate is resolved by the substeps and cannot go unstable).
+  double contact_hertz = 0.0;
+  double contact_damping_ratio = 10.0;
+
+  // Every block rigid (drops the three strain unknowns; materials.NAME.rigid does it per
+  // material). Substep solver only; the implicit solver keeps all six unknowns.
+  bool rigid_blocks = false;
+
+  // Worker threads for the substep solver's sweeps (graph-coloured, so 1 and N threads
+  // give the same numbers bit for bit). 0 = what the caller set for OpenMP. Not a scene
+  // key: set by the command line (--threads).
+  int threads = 0;
 };
 
 // Returns an empty string when the options are usable, else "key: problem".

@@ -18,6 +18,7 @@ struct Material {
   double density = 0.0;        // kg/m^3
   double young_modulus = 0.0;  // Pa
   double poisson_ratio = 0.0;  // -, in [0, 0.5)
+  bool rigid = false;          // substep solver: no strain unknowns (SimulationOptions::rigid_blocks)
 };
 
 // Mohr-Coulomb interface with the bilinear roughness degradation of seed Eq. 2-3.

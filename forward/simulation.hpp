@@ -44,6 +44,20 @@ struct RunCounters {
   double simulated_time = 0.0;
 };
 
+// Which solver ran, why, and what the substep solver measured of its contacts.
+struct SolverReport {
+  Integrator integrator = Integrator::Implicit;  // the one that ran (never Auto)
+  std::string reason;                            // why: the scene's choice or the Auto rule
+  int substeps = 0;                              // per step (substep solver)
+  long contact_points = 0;                       // summed over steps (mean = / steps)
+  double worst_penetration = 0.0;                // m, deepest overlap at the end of a step
+  double worst_penetration_ratio = 0.0;          // that depth / the smaller block's size
+  double worst_penetration_time = 0.0;           // s
+  std::string worst_penetration_at;              // the two blocks
+  long unconverged_points = 0;  // point-steps still closing faster than the tolerance after the last sweep
+  long fast_steps = 0;          // steps in which a block moved further than the contact margin allows
+};
+
 enum class RunStatus { Completed, InvalidScene, Failed };
 
 struct SimulationSummary {
@@ -53,6 +67,7 @@ struct SimulationSummary {
   std::vector<PointSummary> points;
   RunCounters run;
   StepProfile profile;
+  SolverReport solver;
 };
 
 struct SimulationResult {

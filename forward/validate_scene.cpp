@@ -329,6 +329,15 @@ void check_measure(const Scene& scene, const std::vector<Box>& boxes,
 
 }  // namespace
 
+const char* to_string(Integrator integrator) {
+  switch (integrator) {
+    case Integrator::Implicit: return "implicit";
+    case Integrator::Substep: return "substep";
+    case Integrator::Auto: return "auto";
+  }
+  return "?";
+}
+
 std::string validate_options(const SimulationOptions& o) {
   struct Check {
     const char* key;
@@ -366,11 +375,19 @@ std::string validate_options(const SimulationOptions& o) {
       {"contact_tolerance_ratio", o.contact_tolerance_ratio,
        o.contact_tolerance_ratio >= 0 && o.contact_tolerance_ratio <= 0.1, "must be in [0, 0.1]"},
       {"max_pushout_speed", o.max_pushout_speed, positive(o.max_pushout_speed), "must be > 0 m/s"},
+      {"contact_hertz", o.contact_hertz, o.contact_hertz >= 0 && o.contact_hertz <= 1e6,
+       "must be in [0, 1e6] Hz (0 = automatic)"},
+      {"contact_damping_ratio", o.contact_damping_ratio,
+       o.contact_damping_ratio >= 0 && o.contact_damping_ratio <= 1e3, "must be in [0, 1000]"},
+      {"substeps", static_cast<double>(o.substeps), o.substeps >= 1 && o.substeps <= 1000,
+       "must be in [1, 1000]"},
       {"search_distance_factor", o.search_distance_factor,
        o.search_distance_factor >= 1 && std::isfinite(o.search_distance_factor), "must be >= 1"},
   };
   for (const Check& c : checks)
-    if (!c.ok) return std::string("control.") + c.key + ": is " + num(c.value) + "; " + c.rule;
+    if (!c.ok)
+      return std::string(c.key == std::string("substeps") ? "time." : "control.") + c.key + ": is " + num(c.value) +
+             "; " + c.rule;
   return {};
 }
 

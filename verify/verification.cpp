@@ -16,6 +16,12 @@ CheckRow row(std::string case_name, std::string quantity, double analytic, doubl
           std::isfinite(error) && error <= tolerance, std::move(why)};
 }
 
+// The scene as given, run by the solver under test.
+Scene with_solver(Scene scene, Integrator integrator) {
+  scene.options.integrator = integrator;
+  return scene;
+}
+
 // Downslope distance and speed of the slider's centre point from a run's history.
 struct Trace {
   std::vector<double> time, distance, speed;
@@ -75,8 +81,9 @@ InclineErrors incline_errors(const Trace& trace, const std::vector<double>& d, c
 // Displacement along the slope against Eq. 4 (constant friction) or the integrated
 // Eq. 5. Compared where the block has moved at least 1 cm, so that the relative error
 // is not dominated by the micrometre settling of the contact springs at the start.
-CheckRow incline_displacement_row(const InclineSetup& setup, double tolerance, const std::string& why) {
-  const SimulationResult r = simulate(incline_scene(setup));
+CheckRow incline_displacement_row(const InclineSetup& setup, double tolerance, const std::string& why,
+                                  Integrator integrator) {
+  const SimulationResult r = simulate(with_solver(incline_scene(setup), integrator));
   if (r.summary.status != RunStatus::Completed)
     return row(incline_name(setup), "run failed: " + r.summary.message, 0, NAN, NAN, tolerance, why);
   const Vec2 along = Vec2(1.0, -setup.slope_ratio).normalized();
@@ -88,11 +95,11 @@ CheckRow incline_displacement_row(const InclineSetup& setup, double tolerance, c
              d.back(), trace.distance.back(), incline_errors(trace, d, v).displacement, tolerance, why);
 }
 
-std::vector<CheckRow> incline_degradation_rows() {
+std::vector<CheckRow> incline_degradation_rows(Integrator integrator) {
   InclineSetup setup;
   setup.roughness_angle = 5.0;
   const std::string name = incline_name(setup);
-  const SimulationResult r = simulate(incline_scene(setup));
+  const SimulationResult r = simulate(with_solver(incline_scene(setup), integrator));
   if (r.summary.status != RunStatus::Completed)
     return {row(name, "run failed: " + r.summary.message, 0, NAN, NAN, 0.01, "")};
   const Vec2 along = Vec2(1.0, -setup.slope_ratio).normalized();
@@ -123,9 +130,9 @@ std::vector<CheckRow> incline_degradation_rows() {
 }
 
 
-std::vector<CheckRow> thrown_block_rows() {
+std::vector<CheckRow> thrown_block_rows(Integrator integrator) {
   const Scene scene = thrown_block_scene();
-  const SimulationResult r = simulate(scene);
+  const SimulationResult r = simulate(with_solver(scene, integrator));
   if (r.summary.status != RunStatus::Completed)
     return {row("thrown block", "run failed: " + r.summary.message, 0, NAN, NAN, 1e-9, "")};
   const Vec2 v0 = scene.blocks[0].velocity;
@@ -142,12 +149,12 @@ std::vector<CheckRow> thrown_block_rows() {
               "constant-acceleration steps integrate free flight exactly: round-off only")};
 }
 
-std::vector<CheckRow> stable_block_rows() {
+std::vector<CheckRow> stable_block_rows(Integrator integrator) {
   InclineSetup setup;
   setup.friction_angle = 30.0;  // > alpha = 26.57 deg: the block must stay put
   setup.duration = 10.0;
   setup.output_interval = 0.1;
-  const SimulationResult r = simulate(incline_scene(setup));
+  const SimulationResult r = simulate(with_solver(incline_scene(setup), integrator));
   if (r.summary.status != RunStatus::Completed)
     return {row("stable block phi=30 > alpha", "run failed: " + r.summary.message, 0, NAN, NAN, 1e-3, "")};
   const double creep = r.summary.points[0].max_total_displacement;
@@ -155,13 +162,13 @@ std::vector<CheckRow> stable_block_rows() {
               "issue: under 1 mm in 10 s (a public code crept 2.4 cm in 2 s)")};
 }
 
-std::vector<CheckRow> spinning_block_rows() {
+std::vector<CheckRow> spinning_block_rows(Integrator integrator) {
   const double turns = 100.0;
   const Scene scene = spinning_block_scene(turns);
   std::vector<double> areas;
   SimulationHooks hooks;
   hooks.on_output = [&](double, const BlockSystem& s) { areas.push_back(s.blocks[0].area); };
-  const SimulationResult r = simulate(scene, hooks);
+  const SimulationResult r = simulate(with_solver(scene, integrator), hooks);
   if (r.summary.status != RunStatus::Completed)
     return {row("spinning block", "run failed: " + r.summary.message, 0, NAN, NAN, 1e-6, "")};
   double area_error = 0.0;
@@ -177,8 +184,8 @@ std::vector<CheckRow> spinning_block_rows() {
               (r.history.back().position - centre).norm(), radius_error, 1e-6, why)};
 }
 
-std::vector<CheckRow> stack_rows() {
-  const SimulationResult r = simulate(stack_scene());
+std::vector<CheckRow> stack_rows(Integrator integrator) {
+  const SimulationResult r = simulate(with_solver(stack_scene(), integrator));
   if (r.summary.status != RunStatus::Completed)
     return {row("stack of five", "run failed: " + r.summary.message, 0, NAN, NAN, 1e-3, "")};
   const double moved = r.summary.points[0].max_total_displacement;
@@ -186,9 +193,9 @@ std::vector<CheckRow> stack_rows() {
               1e-3, "a stack on a level base is in equilibrium: only spring settling (micrometres) is allowed")};
 }
 
-std::vector<CheckRow> collision_rows() {
+std::vector<CheckRow> collision_rows(Integrator integrator) {
   const Scene scene = collision_scene();
-  const SimulationResult r = simulate(scene);
+  const SimulationResult r = simulate(with_solver(scene, integrator));
   if (r.summary.status != RunStatus::Completed)
     return {row("collision", "run failed: " + r.summary.message, 0, NAN, NAN, 1e-9, "")};
   // Both blocks have the same mass, so momentum is proportional to the sum of velocities.
@@ -214,7 +221,7 @@ std::vector<CheckRow> collision_rows() {
 }  // namespace
 
 std::vector<StabilityPoint> incline_stability_map(const std::vector<double>& penalty_factors,
-                                                  const std::vector<double>& time_steps) {
+                                                  const std::vector<double>& time_steps, Integrator integrator) {
   std::vector<StabilityPoint> map;
   InclineSetup setup;
   setup.roughness_angle = 5.0;
@@ -224,7 +231,7 @@ std::vector<StabilityPoint> incline_stability_map(const std::vector<double>& pen
       setup.time_step = step;
       Scene scene = incline_scene(setup);
       scene.options.penalty_factor = factor;
-      const SimulationResult r = simulate(scene);
+      const SimulationResult r = simulate(with_solver(scene, integrator));
       StabilityPoint p;
       p.penalty_factor = factor;
       p.time_step = step;
@@ -247,26 +254,27 @@ std::vector<StabilityPoint> incline_stability_map(const std::vector<double>& pen
   return map;
 }
 
-std::vector<Check> all_checks() {
+std::vector<Check> all_checks(Integrator integrator) {
   std::vector<Check> checks;
-  checks.push_back({"incline_constant_friction", [] {
+  const std::string suffix = integrator == Integrator::Implicit ? "" : std::string("/") + to_string(integrator);
+  checks.push_back({"incline_constant_friction" + suffix, [=] {
                       return std::vector<CheckRow>{incline_displacement_row(
-                          InclineSetup{}, 0.005, "seed Fig. 6 reached 0.5 %")};
+                          InclineSetup{}, 0.005, "seed Fig. 6 reached 0.5 %", integrator)};
                     }});
-  checks.push_back({"incline_degradation_i5", [] { return incline_degradation_rows(); }});
+  checks.push_back({"incline_degradation_i5" + suffix, [=] { return incline_degradation_rows(integrator); }});
   for (double i : {1.0, 2.0, 10.0}) {
-    checks.push_back({"incline_degradation_i" + std::to_string(static_cast<int>(i)), [i] {
+    checks.push_back({"incline_degradation_i" + std::to_string(static_cast<int>(i)) + suffix, [=] {
                         InclineSetup setup;
                         setup.roughness_angle = i;
-                        return std::vector<CheckRow>{
-                            incline_displacement_row(setup, 0.005, "seed Fig. 6; same bound as constant friction")};
+                        return std::vector<CheckRow>{incline_displacement_row(
+                            setup, 0.005, "seed Fig. 6; same bound as constant friction", integrator)};
                       }});
   }
-  checks.push_back({"thrown_block", [] { return thrown_block_rows(); }});
-  checks.push_back({"stable_block", [] { return stable_block_rows(); }});
-  checks.push_back({"spinning_block", [] { return spinning_block_rows(); }});
-  checks.push_back({"stack", [] { return stack_rows(); }});
-  checks.push_back({"collision", [] { return collision_rows(); }});
+  checks.push_back({"thrown_block" + suffix, [=] { return thrown_block_rows(integrator); }});
+  checks.push_back({"stable_block" + suffix, [=] { return stable_block_rows(integrator); }});
+  checks.push_back({"spinning_block" + suffix, [=] { return spinning_block_rows(integrator); }});
+  checks.push_back({"stack" + suffix, [=] { return stack_rows(integrator); }});
+  checks.push_back({"collision" + suffix, [=] { return collision_rows(integrator); }});
   return checks;
 }
 

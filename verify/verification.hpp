@@ -5,6 +5,8 @@
 #include <string>
 #include <vector>
 
+#include "forward/options.hpp"
+
 namespace ddafit::verification {
 
 struct CheckRow {
@@ -24,7 +26,9 @@ struct Check {
   std::function<std::vector<CheckRow>()> run;
 };
 
-std::vector<Check> all_checks();
+// The suite run by one solver (the implicit one by default). Names carry "/substep" for
+// the substep solver, so both suites can be listed side by side.
+std::vector<Check> all_checks(Integrator integrator = Integrator::Implicit);
 
 // One cell of the incline stability map (docs/verification.md): the seed's incline with
 // i = 5 deg run at a time step and a penalty, against the integrated Eq. 5.
@@ -37,6 +41,7 @@ struct StabilityPoint {
   bool warned = false;              // the run carried the short-time-step warning
 };
 std::vector<StabilityPoint> incline_stability_map(const std::vector<double>& penalty_factors,
-                                                  const std::vector<double>& time_steps);
+                                                  const std::vector<double>& time_steps,
+                                                  Integrator integrator = Integrator::Implicit);
 
 }  // namespace ddafit::verification

@@ -82,6 +82,7 @@ int run_bench(const BenchArgs& args);
 struct VerifyArgs {
   std::string only;  // run only checks whose name contains this
   bool stability_map = false;  // print the incline stability map instead
+  std::string integrator = "implicit";  // implicit | substep | all
 };
 int run_verify(const VerifyArgs& args);
 

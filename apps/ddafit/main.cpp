@@ -5,6 +5,7 @@
 
 #include "apps/ddafit/commands.hpp"
 #include "apps/ddafit/exit_codes.hpp"
+#include "apps/ddafit/thread_budget.hpp"
 
 int main(int argc, char** argv) {
   using namespace ddafit::app;
@@ -76,8 +77,17 @@ int main(int argc, char** argv) {
 
   CLI::App* verify = app.add_subcommand("verify", "run the built-in analytic verification suite");
   verify->add_option("--only", ver.only, "run only the checks whose name contains this text");
+  verify->add_option("--integrator", ver.integrator, "the solver whose suite runs: implicit, substep or all")
+      ->check(CLI::IsMember({"implicit", "substep", "all"}))
+      ->capture_default_str();
   verify->add_flag("--stability-map", ver.stability_map,
                    "run the incline over a grid of time steps and penalties (docs/verification.md)");
+
+  // One thread budget for every command that runs the model (thread_budget.hpp).
+  int threads = 0;
+  for (CLI::App* command : {simulate, stable, invert, scan, verify, bench})
+    command->add_option("--threads", threads, "threads for the model (OpenMP); default: the core count")
+        ->check(CLI::Range(1, 1024));
 
   try {
     app.parse(argc, argv);
@@ -89,6 +99,7 @@ int main(int argc, char** argv) {
     std::cerr << "ddafit: " << e.what() << " (ddafit --help)\n";
     return kExitBadInput;
   }
+  set_thread_budget(threads);
   if (*simulate) return run_simulate(sim);
   if (*verify) return run_verify(ver);
   if (*mesh_cmd) return run_mesh(mesh);

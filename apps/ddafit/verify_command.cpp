@@ -24,7 +24,12 @@ int run_verify(const VerifyArgs& args) {
   int failed = 0, ran = 0;
   std::cout << fmt::format("{:<28} {:<72} {:>12} {:>12} {:>10} {:>9} {}\n", "case", "quantity", "analytic",
                            "computed", "error", "tolerance", "pass");
-  for (const auto& check : verification::all_checks()) {
+  std::vector<verification::Check> checks;
+  for (Integrator integrator : {Integrator::Implicit, Integrator::Substep}) {
+    if (args.integrator != "all" && args.integrator != to_string(integrator)) continue;
+    for (auto& check : verification::all_checks(integrator)) checks.push_back(std::move(check));
+  }
+  for (const auto& check : checks) {
     if (!args.only.empty() && check.name.find(args.only) == std::string::npos) continue;
     for (const auto& r : check.run()) {
       ++ran;

@@ -34,9 +34,11 @@ class Reader : public YamlChecks {
     Scene s;
     if (const YAML::Node n = root["gravity"]) s.gravity = vec2(n, "gravity");
     const YAML::Node time = required(root, "", "time", "add time: {duration: ..., step: ...}");
-    check_keys(time, "time", {"duration", "step"});
+    check_keys(time, "time", {"duration", "step", "integrator", "substeps"});
     s.duration = req_number(time, "time", "duration", "give the end time in s");
     s.max_step = req_number(time, "time", "step", "give the time step in s");
+    if (const YAML::Node n = time["integrator"]) s.options.integrator = integrator(n);
+    if (const YAML::Node n = time["substeps"]) s.options.substeps = scalar<int>(n, "time.substeps", "a whole number");
     read_materials(required(root, "", "materials", "define at least one material"), s);
     if (const YAML::Node n = root["interfaces"]) read_interfaces(n, s);
     if (const YAML::Node b = root["blocks"]; b || !root["regions"])
@@ -70,16 +72,24 @@ class Reader : public YamlChecks {
   }
 
  private:
+  Integrator integrator(const YAML::Node& n) const {
+    const std::string name = text(n, "time.integrator");
+    for (Integrator i : {Integrator::Implicit, Integrator::Substep, Integrator::Auto})
+      if (name == to_string(i)) return i;
+    fail("time.integrator", "is '" + name + "'; use implicit, substep or auto");
+  }
+
   void read_materials(const YAML::Node& node, Scene& s) const {
     const std::vector<std::string> names = map_keys(node, "materials");
     if (names.empty()) fail("materials", "is empty; define at least one material");
     for (const std::string& name : names) {
       const std::string path = "materials." + name;
       const YAML::Node m = node[name];
-      check_keys(m, path, {"density", "young_modulus", "poisson_ratio"});
+      check_keys(m, path, {"density", "young_modulus", "poisson_ratio", "rigid"});
       s.materials.push_back({name, req_number(m, path, "density", "give kg/m^3"),
                              req_number(m, path, "young_modulus", "give Pa"),
                              req_number(m, path, "poisson_ratio", "give a value in [0, 0.5)")});
+      if (const YAML::Node n = m["rigid"]) s.materials.back().rigid = scalar<bool>(n, path + ".rigid", "true or false");
     }
   }
 
@@ -271,6 +281,12 @@ Scene parse_scene(const std::string& yaml_text, const std::string& file_label, c
     std::vector<YAML::Node> chain{root};
     for (size_t k = 0; k + 1 < parts.size(); ++k) {
       YAML::Node next = chain.back()[parts[k]];
+      // A section the scene does not have yet (control:, say) is created; the reader
+      // then checks its keys as if the file had it.
+      if (!next.IsDefined() || next.IsNull()) {
+        chain.back()[parts[k]] = YAML::Node(YAML::NodeType::Map);
+        next = chain.back()[parts[k]];
+      }
       if (!next.IsMap()) throw SceneReadError(file_label + ": " + key + ": '" + parts[k] + "' is not a map in the scene");
       chain.push_back(next);
     }

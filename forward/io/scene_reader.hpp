@@ -85,6 +85,9 @@ inline constexpr ControlKey kControlKeys[] = {
     {"settle_passes", &SimulationOptions::settle_passes},
     {"plane_strain", &SimulationOptions::plane_strain},
     {"reuse_factorization", &SimulationOptions::reuse_factorization},
+    {"contact_hertz", &SimulationOptions::contact_hertz},
+    {"contact_damping_ratio", &SimulationOptions::contact_damping_ratio},
+    {"rigid_blocks", &SimulationOptions::rigid_blocks},
 };
 
 }  // namespace ddafit::io

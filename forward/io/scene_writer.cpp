@@ -54,13 +54,19 @@ std::string scene_to_yaml(const Scene& s) {
   out << BeginMap << Key << "gravity" << Value;
   put_vec2(out, s.gravity);
   out << Key << "time" << Value;
-  put_flow_map(out, {{"duration", num(s.duration)}, {"step", num(s.max_step)}});
+  std::vector<std::pair<std::string, std::string>> time{{"duration", num(s.duration)}, {"step", num(s.max_step)}};
+  const SimulationOptions default_options;
+  if (s.options.integrator != default_options.integrator) time.emplace_back("integrator", to_string(s.options.integrator));
+  if (s.options.substeps != default_options.substeps) time.emplace_back("substeps", std::to_string(s.options.substeps));
+  put_flow_map(out, time);
   out << Key << "materials" << Value << BeginMap;
   for (const Material& m : s.materials) {
     out << Key << m.name << Value;
-    put_flow_map(out, {{"density", num(m.density)},
-                       {"young_modulus", num(m.young_modulus)},
-                       {"poisson_ratio", num(m.poisson_ratio)}});
+    std::vector<std::pair<std::string, std::string>> fields{{"density", num(m.density)},
+                                                           {"young_modulus", num(m.young_modulus)},
+                                                           {"poisson_ratio", num(m.poisson_ratio)}};
+    if (m.rigid) fields.emplace_back("rigid", "true");
+    put_flow_map(out, fields);
   }
   out << EndMap;
   if (!s.interfaces.empty()) {

@@ -3,28 +3,11 @@
 #include <cmath>
 
 #include "forward/contact_geometry.hpp"
-#include "forward/friction.hpp"
+#include "forward/contact_law.hpp"
+#include "forward/mass_matrix.hpp"
 
 namespace ddafit {
 namespace {
-
-// Mass matrix of one block divided by density: rho * integral of T^T T over the block
-// (formulation digest, "Inertia"), from the area and second moments about the centroid.
-Mat6 unit_mass_matrix(const Block& b) {
-  const double sxx = b.s_xx, syy = b.s_yy, sxy = b.s_xy;
-  Mat6 m = Mat6::Zero();
-  m(0, 0) = m(1, 1) = b.area;
-  m(2, 2) = sxx + syy;
-  m(2, 3) = m(3, 2) = -sxy;
-  m(2, 4) = m(4, 2) = sxy;
-  m(2, 5) = m(5, 2) = 0.5 * (sxx - syy);
-  m(3, 3) = sxx;
-  m(3, 5) = m(5, 3) = 0.5 * sxy;
-  m(4, 4) = syy;
-  m(4, 5) = m(5, 4) = 0.5 * sxy;
-  m(5, 5) = 0.25 * (sxx + syy);
-  return m;
-}
 
 void assemble_blocks(const BlockSystem& s, const StepParameters& step, BlockSparseMatrix& k,
                      Eigen::VectorXd& f) {
@@ -68,7 +51,13 @@ double sliding_friction_force(const BlockSystem& s, const Contact& c) {
   // that slips far degrades friction, which lets the next pass slip further); the last
   // accepted step's slip predicts it to second order without that loop.
   const double mid_slip = c.accumulated_slip + 0.5 * c.last_step_slip;
-  return c.normal_force * tan_degrees(degraded_friction_angle(face, mid_slip, c.critical_distance));
+  return c.normal_force * friction_coefficient(face, mid_slip, c.critical_distance);
+}
+
+double locked_shear_limit(const BlockSystem& s, const Contact& c) {
+  const Interface& face = s.interfaces[c.interface];
+  const double mid_slip = c.accumulated_slip + 0.5 * c.last_step_slip;
+  return shear_strength(face, c.normal_force, mid_slip, c.critical_distance, c.bonded, c.bond_length);
 }
 
 void assemble(const BlockSystem& s, const std::vector<Contact>& contacts, const StepParameters& step,

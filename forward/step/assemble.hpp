@@ -46,4 +46,8 @@ void assemble(const BlockSystem& system, const std::vector<Contact>& contacts,
 // accepted step's), which keeps the lag of an explicit update out of the acceleration.
 double sliding_friction_force(const BlockSystem& system, const Contact& contact);
 
+// Largest shear force a locked contact holds before it slides: the sliding friction plus,
+// while bonded, the cohesion (forward/contact_law.hpp, Mohr-Coulomb).
+double locked_shear_limit(const BlockSystem& system, const Contact& contact);
+
 }  // namespace ddafit

@@ -4,7 +4,7 @@
 #include <cmath>
 
 #include "forward/contact_geometry.hpp"
-#include "forward/friction.hpp"
+#include "forward/contact_law.hpp"
 
 namespace ddafit {
 
@@ -24,7 +24,7 @@ ContactCheck check_contacts(const BlockSystem& s, std::vector<Contact>& contacts
     const ContactState before = c.state;
     const double force_before = c.normal_force;
     const Interface& face = s.interfaces[c.interface];
-    const double tension_cap = c.bonded ? face.tensile_strength * c.bond_length : 0.0;
+    const double tension_cap = tensile_capacity(face, c.bonded, c.bond_length);
     // N, negative in tension; the spring is unloaded at spring_reference (assemble.hpp).
     const double compression = -step.penalty * (c.normal_gap - spring_reference(c, step));
 
@@ -46,8 +46,7 @@ ContactCheck check_contacts(const BlockSystem& s, std::vector<Contact>& contacts
         if (sliding_slip(c) * c.slip_direction <= -allowance) c.state = ContactState::Locked;
       } else {
         // Locked (or just closed): the shear spring must stay within Mohr-Coulomb.
-        const double cohesion = c.bonded ? face.cohesion * c.bond_length : 0.0;
-        const double limit = sliding_friction_force(s, c) + cohesion;
+        const double limit = locked_shear_limit(s, c);
         const double shear = step.shear_penalty * c.shear_offset;
         if (std::abs(shear) <= limit) {
           c.state = ContactState::Locked;

@@ -66,8 +66,7 @@ bool settle_contacts(BlockSystem& s, std::vector<Contact>& contacts, const StepP
     c.normal_gap = lin.area0 / lin.edge_length;
     c.normal_force = c.state == ContactState::Open ? 0.0 : std::max(0.0, -step.penalty * c.normal_gap);
     if (c.state == ContactState::Open) continue;
-    const Interface& face = s.interfaces[c.interface];
-    const double limit = sliding_friction_force(s, c) + (c.bonded ? face.cohesion * c.bond_length : 0.0);
+    const double limit = locked_shear_limit(s, c);
     const double shear = step.shear_penalty * lin.shear0;
     if (std::abs(shear) <= limit) continue;
     c.state = ContactState::Sliding;

@@ -1,0 +1,19 @@
+#include "apps/ddafit/thread_budget.hpp"
+
+#include <dlfcn.h>
+#include <omp.h>
+
+#include <thread>
+
+namespace ddafit::app {
+
+void set_thread_budget(int threads) {
+  if (threads <= 0) threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  omp_set_num_threads(threads);
+  // OpenBLAS is reached through CHOLMOD and may be another BLAS on a given machine, so
+  // its setter is looked up rather than linked.
+  using SetThreads = void (*)(int);
+  if (auto set = reinterpret_cast<SetThreads>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads"))) set(1);
+}
+
+}  // namespace ddafit::app

@@ -1,0 +1,74 @@
+#include "forward/run_record.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace ddafit {
+
+Vec2 point_velocity(const BlockSystem& s, const MaterialPoint& p) {
+  const Block& b = s.blocks[p.block];
+  if (b.unknown < 0) return Vec2::Zero();
+  return displacement_matrix(p.position, b.centroid) * b.velocity;
+}
+
+RunRecorder::RunRecorder(const Scene& scene, const SimulationHooks& hooks, SimulationResult& result)
+    : scene_(scene),
+      hooks_(hooks),
+      result_(result),
+      next_output_(scene.output_interval),
+      end_slack_(1e-9 * scene.duration),
+      last_progress_(std::chrono::steady_clock::now()) {
+  for (const MeasurePoint& m : scene.measure) result_.summary.points.push_back({m.name});
+}
+
+void RunRecorder::record_row(double time, const BlockSystem& s) {
+  for (size_t k = 0; k < s.points.size(); ++k) {
+    const MaterialPoint& p = s.points[k];
+    result_.history.push_back({time, static_cast<int>(k), p.position, p.position - p.initial_position,
+                               point_velocity(s, p)});
+  }
+}
+
+void RunRecorder::start(const BlockSystem& s) {
+  record(0.0, s);
+}
+
+double RunRecorder::fit_step(double time, double step, double* landing) const {
+  *landing = -1.0;
+  const double target = scene_.output_interval > 0.0 ? std::min(next_output_, scene_.duration) : scene_.duration;
+  if (target - time <= step * (1.0 + 1e-6)) {
+    *landing = target;
+    return target - time;
+  }
+  return step;
+}
+
+void RunRecorder::record(double time, const BlockSystem& s) {
+  for (size_t k = 0; k < s.points.size(); ++k) {
+    const MaterialPoint& p = s.points[k];
+    const Vec2 u = p.position - p.initial_position;
+    const Vec2 v = point_velocity(s, p);
+    PointSummary& sum = result_.summary.points[k];
+    sum.max_lateral_displacement = std::max(sum.max_lateral_displacement, std::abs(u.x()));
+    sum.max_total_displacement = std::max(sum.max_total_displacement, u.norm());
+    sum.peak_lateral_velocity = std::max(sum.peak_lateral_velocity, std::abs(v.x()));
+    sum.peak_total_velocity = std::max(sum.peak_total_velocity, v.norm());
+    if (v.norm() >= scene_.rest_speed) sum.duration = time;
+    sum.stopped = v.norm() < scene_.rest_speed;
+  }
+  const bool at_start = time == 0.0;
+  const bool at_output = scene_.output_interval <= 0.0 || time >= next_output_ - end_slack_;
+  if (at_start || at_output || finished(time)) {
+    record_row(time, s);
+    if (hooks_.on_output) hooks_.on_output(time, s);
+    while (scene_.output_interval > 0.0 && next_output_ <= time + end_slack_)
+      next_output_ = static_cast<double>(++output_count_) * scene_.output_interval;
+  }
+  const auto now = std::chrono::steady_clock::now();
+  if (hooks_.on_progress && now - last_progress_ > std::chrono::seconds(1)) {
+    hooks_.on_progress(time, scene_.duration);
+    last_progress_ = now;
+  }
+}
+
+}  // namespace ddafit

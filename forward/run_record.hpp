@@ -1,0 +1,45 @@
+// What both solvers record of a run: the output schedule, the history of the
+// measurement points, their running extremes, and the progress calls.
+#pragma once
+
+#include <chrono>
+
+#include "forward/simulation.hpp"
+
+namespace ddafit {
+
+// Velocity of a measurement point: T(p) times its block's velocity.
+Vec2 point_velocity(const BlockSystem& system, const MaterialPoint& point);
+
+class RunRecorder {
+ public:
+  RunRecorder(const Scene& scene, const SimulationHooks& hooks, SimulationResult& result);
+
+  // Records t = 0.
+  void start(const BlockSystem& system);
+
+  // The step to attempt from `time`: `step`, or, when the next output time (or the end)
+  // is within a hair of a step away, the step that lands on it exactly, so that rows fall
+  // on multiples of the interval without round-off drift. *landing is then that time, else -1.
+  double fit_step(double time, double step, double* landing) const;
+
+  // After an accepted step that ended at `time`: extremes every step, a history row at
+  // output times and at the end, and a progress call about once per second of wall time.
+  void record(double time, const BlockSystem& system);
+
+  // A history row now, whatever the schedule (the last state of a failed run).
+  void record_row(double time, const BlockSystem& system);
+
+  bool finished(double time) const { return time >= scene_.duration - end_slack_; }
+
+ private:
+  const Scene& scene_;
+  const SimulationHooks& hooks_;
+  SimulationResult& result_;
+  long output_count_ = 1;  // outputs at multiples of the interval, without summing round-off
+  double next_output_ = 0.0;
+  double end_slack_ = 0.0;
+  std::chrono::steady_clock::time_point last_progress_;
+};
+
+}  // namespace ddafit

@@ -1,0 +1,190 @@
+#include "forward/step/run_implicit.hpp"
+
+#include <algorithm>
+#include <sstream>
+
+#include "forward/sparse_system.hpp"
+#include "forward/step/control_time_step.hpp"
+#include "forward/step/energy_check.hpp"
+#include "forward/step/find_contacts.hpp"
+#include "forward/step/open_close_iterate.hpp"
+#include "forward/step/settle_contacts.hpp"
+#include "forward/step/update_blocks.hpp"
+
+namespace ddafit {
+namespace {
+
+// Settling may move a block by up to this many steps' worth of displacement: enough for
+// the elastic shortening of a tall mass, not for a block that is falling over.
+constexpr double kSettleShiftSteps = 10.0;
+
+std::string describe_contact(const BlockSystem& s, const Contact& c) {
+  const Block& bi = s.blocks[c.block_i];
+  std::ostringstream out;
+  const Block& bj = s.blocks[c.block_j];
+  const Vec2& p1 = s.vertices[c.vertex];
+  const Vec2& p2 = s.vertices[c.edge];
+  const Vec2& p3 = s.vertices[s.next_vertex(c.edge)];
+  out << "contact of block '" << s.block_names[c.block_i] << "' vertex " << (c.vertex - bi.first_vertex) << " at ("
+      << p1.x() << ", " << p1.y() << ") on edge " << (c.edge - bj.first_vertex) << " (" << p2.x() << ", " << p2.y()
+      << ")-(" << p3.x() << ", " << p3.y() << ") of block '" << s.block_names[c.block_j] << "' ("
+      << to_string(c.state) << ", gap " << c.normal_gap << " m)";
+  return out.str();
+}
+
+}  // namespace
+
+double automatic_penalty(const Scene& scene) {
+  if (scene.options.penalty > 0.0) return scene.options.penalty;
+  double largest = 0.0;
+  for (const Material& m : scene.materials) largest = std::max(largest, m.young_modulus);
+  return scene.options.penalty_factor * largest;
+}
+
+void run_implicit(const Scene& scene, BlockSystem& system, RunRecorder& recorder, SimulationSummary& summary) {
+  const SimulationOptions& options = scene.options;
+  TimeStepControl control =
+      make_time_step_control(options, scene.max_step, system.half_model_size, automatic_penalty(scene));
+  ContactSearch search;
+  search.search_distance = options.search_distance_factor * control.max_displacement;
+  search.first_step = true;
+
+  // The springs and loads of one attempt at a step of length dt.
+  const auto step_parameters = [&](double dt) {
+    return StepParameters{dt, control.penalty, options.shear_penalty_ratio * control.penalty, scene.gravity,
+                          options.contact_tolerance_ratio * control.max_displacement,
+                          options.max_pushout_speed * dt};
+  };
+  std::vector<Contact> contacts, saved;
+  BlockSparseMatrix k;
+  Eigen::VectorXd f, d;
+  SolverOptions solver_options;
+  solver_options.reuse_factorization = options.reuse_factorization;
+  SparseSolver solver(solver_options);
+  StepProfile& profile = summary.profile;
+  RunCounters& run = summary.run;
+  run.smallest_step = scene.max_step;
+  double time = 0.0;
+
+  if (options.settle_passes > 0) {
+    // The contacts touching at t = 0 start loaded (forward/step/settle_contacts.hpp).
+    std::string problem;
+    {
+      ScopedTimer timer(profile.find_contacts);
+      problem = find_contacts(system, search, contacts);
+    }
+    if (!problem.empty()) {
+      summary.status = RunStatus::InvalidScene;
+      summary.message = "t = 0: " + problem;
+      return;
+    }
+    ScopedTimer timer(profile.settle);
+    const StepParameters step = step_parameters(control.step);
+    if (!settle_contacts(system, contacts, step, options.settle_passes, kSettleShiftSteps * control.max_displacement,
+                         solver)) {
+      summary.status = RunStatus::Failed;
+      summary.message = "t = 0: the initial contact settling could not be solved: check for blocks that "
+                        "overlap or a penalty far stiffer than the blocks";
+      return;
+    }
+  }
+
+  recorder.start(system);
+  const EnergyAudit audit = start_energy_audit(system, scene.gravity);
+
+  auto fail = [&](RunStatus status, const std::string& why) {
+    std::ostringstream out;
+    out << "t = " << time << " s, step " << run.steps + 1 << ": " << why;
+    summary.status = status;
+    summary.message = out.str();
+  };
+
+  while (!recorder.finished(time)) {
+    {
+      ScopedTimer timer(profile.find_contacts);
+      const std::string problem = find_contacts(system, search, contacts);
+      if (!problem.empty()) {
+        fail(RunStatus::InvalidScene, problem);
+        break;
+      }
+    }
+    search.first_step = false;
+    saved = contacts;
+    bool accepted = false;
+    double attempt = 0.0;
+    double landing = -1.0;  // the output time or end time this step lands on exactly, if any
+    while (!accepted) {
+      attempt = recorder.fit_step(time, control.step, &landing);
+      const StepParameters step = step_parameters(attempt);
+      const OpenCloseResult oc =
+          open_close_iterate(system, contacts, step, options, solver, k, f, d, profile);
+      run.open_close_iterations += oc.iterations;
+      run.unsettled_contacts += oc.unsettled;
+      std::string why;
+      double factor = options.step_cut_factor;
+      if (!oc.converged) {
+        why = oc.reason;
+        if (oc.unsettled_contact >= 0) why += " at the " + describe_contact(system, contacts[oc.unsettled_contact]);
+      } else if (const double moved = max_vertex_displacement(system, d); moved > control.max_displacement) {
+        why = "a vertex moved " + std::to_string(moved) + " m in one step (limit " +
+              std::to_string(control.max_displacement) + " m)";
+        factor = std::clamp(0.8 * control.max_displacement / moved, 0.1, 0.9);
+      } else {
+        int deepest = -1;
+        // Half the search distance: deeper, a contact is close to being lost altogether.
+        const double depth =
+            max_penetration(contacts, step, control.max_penetration, 0.5 * search.search_distance, &deepest);
+        if (depth > control.max_penetration) {
+          const std::string where = describe_contact(system, contacts[deepest]);
+          if (raise_penalty(control, options)) {
+            contacts = saved;
+            ++run.penalty_raises;
+            continue;
+          }
+          // A stiffer spring did not help: a corner running into a corner is caught
+          // earlier by a shorter step. Only when the step can no longer shrink does the
+          // run stop.
+          why = "penetration " + std::to_string(depth) + " m at the " + where + " stays above the limit after " +
+                std::to_string(control.penalty_raises) + " penalty raises in this step";
+          control.penalty_raises = 0;
+        } else {
+          accepted = true;
+          break;
+        }
+      }
+      contacts = saved;
+      ++run.step_cuts;
+      control.step = attempt;
+      if (!cut_step(control, factor)) {
+        fail(RunStatus::Failed, why + "; the time step fell below " + std::to_string(control.min_step) +
+                                    " s. Try a smaller time.step or control.max_displacement_ratio, a different "
+                                    "control.penalty, or a larger control.max_open_close_iterations");
+        break;
+      }
+    }
+    if (!accepted) break;
+
+    {
+      ScopedTimer timer(profile.update);
+      update_blocks(system, contacts, d, attempt, options.shear_penalty_ratio * control.penalty);
+    }
+    time = landing >= 0.0 ? landing : time + attempt;
+    ++run.steps;
+    run.smallest_step = std::min(run.smallest_step, attempt);
+    run.largest_step = std::max(run.largest_step, attempt);
+    grow_step(control, options);
+    if (const std::string problem = check_energy(audit, system, scene.gravity); !problem.empty()) {
+      recorder.record_row(time, system);
+      fail(RunStatus::Failed, problem);
+      break;
+    }
+    recorder.record(time, system);
+  }
+  run.simulated_time = time;
+  run.symbolic_analyses = solver.counters().symbolic_analyses;
+  run.factorizations = solver.counters().factorizations;
+  run.cg_solves = solver.counters().cg_solves;
+  run.final_penalty = control.penalty;
+}
+
+}  // namespace ddafit

@@ -1,0 +1,64 @@
+#include "forward/substep/find_pairs.hpp"
+
+#include <algorithm>
+#include <span>
+
+#include "forward/substep/convex_pieces.hpp"
+
+namespace ddafit {
+
+std::string build_shapes(const BlockSystem& s, SubstepShapes& shapes) {
+  shapes = {};
+  std::vector<Vec2> polygon;
+  for (int b = 0; b < static_cast<int>(s.blocks.size()); ++b) {
+    const Block& block = s.blocks[b];
+    polygon.assign(s.vertices.begin() + block.first_vertex,
+                   s.vertices.begin() + block.first_vertex + block.vertex_count);
+    const std::vector<std::vector<int>> pieces = convex_pieces(polygon);
+    if (pieces.empty()) return s.block_names[b];
+    for (const std::vector<int>& piece : pieces) {
+      shapes.pieces.push_back({b, static_cast<int>(shapes.corners.size()), static_cast<int>(piece.size())});
+      for (int k : piece) shapes.corners.push_back(block.first_vertex + k);
+    }
+  }
+  return {};
+}
+
+std::vector<std::pair<int, int>> find_pairs(const BlockSystem& s, const SubstepShapes& shapes, double margin) {
+  struct Box {
+    double lo_x, hi_x, lo_y, hi_y;
+    int piece;
+  };
+  std::vector<Box> boxes;
+  boxes.reserve(shapes.pieces.size());
+  for (int p = 0; p < static_cast<int>(shapes.pieces.size()); ++p) {
+    const ConvexPiece& piece = shapes.pieces[p];
+    Box box{1e300, -1e300, 1e300, -1e300, p};
+    for (int k = piece.first; k < piece.first + piece.count; ++k) {
+      const Vec2& v = s.vertices[shapes.corners[k]];
+      box.lo_x = std::min(box.lo_x, v.x());
+      box.hi_x = std::max(box.hi_x, v.x());
+      box.lo_y = std::min(box.lo_y, v.y());
+      box.hi_y = std::max(box.hi_y, v.y());
+    }
+    boxes.push_back(box);
+  }
+  std::sort(boxes.begin(), boxes.end(), [](const Box& a, const Box& b) { return a.lo_x < b.lo_x; });
+  std::vector<std::pair<int, int>> pairs;
+  for (size_t i = 0; i < boxes.size(); ++i) {
+    const Box& a = boxes[i];
+    const ConvexPiece& pa = shapes.pieces[a.piece];
+    for (size_t j = i + 1; j < boxes.size() && boxes[j].lo_x <= a.hi_x + margin; ++j) {
+      const Box& b = boxes[j];
+      if (b.lo_y > a.hi_y + margin || a.lo_y > b.hi_y + margin) continue;
+      const ConvexPiece& pb = shapes.pieces[b.piece];
+      if (pa.block == pb.block) continue;
+      if (s.blocks[pa.block].fixed && s.blocks[pb.block].fixed) continue;
+      pairs.emplace_back(std::min(a.piece, b.piece), std::max(a.piece, b.piece));
+    }
+  }
+  std::sort(pairs.begin(), pairs.end());
+  return pairs;
+}
+
+}  // namespace ddafit

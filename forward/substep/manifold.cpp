@@ -1,0 +1,223 @@
+#include "forward/substep/manifold.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace ddafit {
+namespace {
+
+constexpr double kInfinity = std::numeric_limits<double>::infinity();
+// Faces closer to parallel than sin^2(angle) = 1e-10 (about 1e-5 rad) are treated as
+// parallel: the closest-point formula divides by sin^2 and loses every digit there.
+constexpr double kParallel = 1e-10;
+
+double cross(const Vec2& u, const Vec2& v) { return u.x() * v.y() - u.y() * v.x(); }
+
+// Outward direction of an edge of a counter-clockwise polygon: its right-hand side.
+Vec2 outward(const Vec2& edge) { return Vec2(edge.y(), -edge.x()); }
+
+// A polygon seen from a's first vertex: the polygons are metres across but their
+// coordinates reach ~3000 m, so differences are taken once, near the origin.
+struct Shape {
+  std::span<const Vec2> v;
+  Vec2 origin;
+  int n = 0;
+  Vec2 at(int i) const { return v[static_cast<size_t>(i % n)] - origin; }
+};
+
+struct Axis {
+  int edge = -1;
+  double separation = -kInfinity;
+};
+
+// The edge of p whose normal separates q from p the most. p's own extent beyond the
+// edge along that normal is subtracted: it is zero for a convex polygon, but keeps the
+// value a true lower bound of the gap if a nearly straight vertex leaves a tiny edge
+// whose normal points anywhere.
+Axis best_axis(const Shape& p, const Shape& q, double tiny) {
+  Axis best;
+  for (int i = 0; i < p.n; ++i) {
+    const Vec2 p0 = p.at(i), edge = p.at(i + 1) - p0;
+    const double length = edge.norm();
+    if (!(length > tiny)) continue;
+    const Vec2 normal = outward(edge) / length;
+    double own = 0.0, gap = kInfinity;
+    for (int k = 0; k < p.n; ++k) own = std::max(own, normal.dot(p.at(k) - p0));
+    for (int k = 0; k < q.n; ++k) gap = std::min(gap, normal.dot(q.at(k) - p0));
+    if (gap - own > best.separation) best = {i, gap - own};
+  }
+  return best;
+}
+
+// A face: the run of edges from vertex `first` to vertex `last` (counter-clockwise).
+struct Face {
+  int first = 0;
+  int last = 0;
+};
+
+// Grows an edge over its neighbours while they continue its line within `flat`. Without
+// this a straight vertex in the middle of a side would make the reference face half a
+// side, and a block resting on that side would be held at one half only.
+Face grow_face(const Shape& p, int edge, double flat) {
+  const Vec2 p0 = p.at(edge), t = (p.at(edge + 1) - p0).normalized();
+  const auto on_line = [&](int from, int to, int test) {
+    return std::abs(cross(t, p.at(test) - p0)) <= flat && t.dot(p.at(to) - p.at(from)) > 0.0;
+  };
+  Face f{edge, (edge + 1) % p.n};
+  // Leave at least two edges outside the face: beyond that the polygon has no area.
+  for (int edges = 1; edges < p.n - 2; ++edges) {
+    const int before = (f.first + p.n - 1) % p.n, after = (f.last + 1) % p.n;
+    if (on_line(before, f.first, before)) {
+      f.first = before;
+    } else if (on_line(f.last, after, after)) {
+      f.last = after;
+    } else {
+      break;
+    }
+  }
+  return f;
+}
+
+// When the closest points of segments [p1, q1] and [p2, q2] are an end of each, which
+// ends (0 = p, 1 = q); {-1, -1} when a closest point is inside a segment.
+struct Ends {
+  int on1 = -1;
+  int on2 = -1;
+};
+
+Ends closest_ends(const Vec2& p1, const Vec2& q1, const Vec2& p2, const Vec2& q2) {
+  const Vec2 d1 = q1 - p1, d2 = q2 - p2, r = p1 - p2;
+  const double aa = d1.squaredNorm(), ee = d2.squaredNorm(), bb = d1.dot(d2);
+  const double cc = d1.dot(r), ff = d2.dot(r), denominator = aa * ee - bb * bb;
+  if (denominator <= kParallel * aa * ee) {
+    // Parallel: if the faces overlap along their common direction the closest points are
+    // not unique and the contact is face to face (even across a gap); otherwise the
+    // nearest two ends. Positions of p2 and q2 along segment 1, in its length units:
+    const double s_p2 = -cc / aa, s_q2 = (bb - cc) / aa;
+    if (std::max(s_p2, s_q2) < 0.0) return {0, s_p2 > s_q2 ? 0 : 1};
+    if (std::min(s_p2, s_q2) > 1.0) return {1, s_p2 < s_q2 ? 0 : 1};
+    return {};
+  }
+  // Closest points of the two lines, then clamped into the segments (s on 1, t on 2).
+  double s = std::clamp((bb * ff - cc * ee) / denominator, 0.0, 1.0);
+  double t = (bb * s + ff) / ee;
+  if (t < 0.0) {
+    t = 0.0;
+    s = std::clamp(-cc / aa, 0.0, 1.0);
+  } else if (t > 1.0) {
+    t = 1.0;
+    s = std::clamp((bb - cc) / aa, 0.0, 1.0);
+  }
+  if ((s == 0.0 || s == 1.0) && (t == 0.0 || t == 1.0)) return {s == 1.0, t == 1.0};
+  return {};
+}
+
+}  // namespace
+
+Manifold collide_polygons(std::span<const Vec2> a, std::span<const Vec2> b, double max_distance,
+                          double linear_slop) {
+  Manifold m;
+  if (a.size() < 3 || b.size() < 3) return m;
+  const Vec2 origin = a[0];
+  const Shape sa{a, origin, static_cast<int>(a.size())}, sb{b, origin, static_cast<int>(b.size())};
+  double extent = 0.0;
+  for (int k = 0; k < sa.n; ++k) extent = std::max(extent, sa.at(k).cwiseAbs().maxCoeff());
+  for (int k = 0; k < sb.n; ++k) extent = std::max(extent, sb.at(k).cwiseAbs().maxCoeff());
+  const double tiny = 1e-12 * extent;  // an edge shorter than round-off has no direction
+
+  // Separating axes of both polygons; apart along any axis by more than the margin
+  // means no contact at all.
+  const Axis axis_a = best_axis(sa, sb, tiny), axis_b = best_axis(sb, sa, tiny);
+  if (axis_a.edge < 0 || axis_b.edge < 0) return m;
+  if (axis_a.separation > max_distance || axis_b.separation > max_distance) return m;
+
+  // Reference polygon: a unless b's axis is clearly better, so that two equally good
+  // axes do not swap the reference (and the point ids) from one call to the next.
+  const bool flip = axis_b.separation > axis_a.separation + 0.1 * linear_slop;
+  const Shape& ref = flip ? sb : sa;
+  const Shape& inc = flip ? sa : sb;
+  const int ref_owner = flip ? 1 : 0, inc_owner = 1 - ref_owner;
+  const double flat = 1e-3 * linear_slop;
+  const Face rf = grow_face(ref, flip ? axis_b.edge : axis_a.edge, flat);
+  const Vec2 v11 = ref.at(rf.first), v12 = ref.at(rf.last);
+  const double ref_length = (v12 - v11).norm();
+  const Vec2 tangent = (v12 - v11) / ref_length, normal = outward(tangent);
+
+  // Incident face: the edge of the other polygon facing the reference face the most.
+  int inc_edge = -1;
+  double facing = kInfinity;
+  for (int j = 0; j < inc.n; ++j) {
+    const Vec2 edge = inc.at(j + 1) - inc.at(j);
+    const double length = edge.norm();
+    if (!(length > tiny)) continue;
+    const double d = normal.dot(outward(edge)) / length;
+    if (d < facing) {
+      facing = d;
+      inc_edge = j;
+    }
+  }
+  if (inc_edge < 0) return m;
+  const Face incf = grow_face(inc, inc_edge, flat);
+  const Vec2 v21 = inc.at(incf.first), v22 = inc.at(incf.last);
+  m.normal = flip ? Vec2(-normal) : normal;  // always from a to b
+
+  // Apart, corner facing corner: one point, normal along the line joining the corners.
+  // The gap exceeds 0.1 x linear_slop here, so that line has a well-defined direction.
+  if (std::max(axis_a.separation, axis_b.separation) > 0.1 * linear_slop) {
+    const Ends ends = closest_ends(v11, v12, v21, v22);
+    if (ends.on1 >= 0) {
+      const int ref_vertex = ends.on1 == 1 ? rf.last : rf.first;
+      const int inc_vertex = ends.on2 == 1 ? incf.last : incf.first;
+      const Vec2 corner = ref.at(ref_vertex), d = inc.at(inc_vertex) - corner;
+      const double distance = d.norm();
+      if (!(distance < max_distance)) return Manifold{};
+      m.normal = (flip ? Vec2(-d) : d) / distance;
+      m.points[0] = {origin + corner + 0.5 * d, distance,
+                     manifold_id(inc_owner, inc_vertex, ref_vertex, true), inc_owner, inc_vertex};
+      m.point_count = 1;
+      return m;
+    }
+  }
+
+  // Face contact: cut the incident face to the slab between the lines through the
+  // reference face's ends along the normal. A cut end is the reference polygon's corner
+  // pressing on the incident face; an uncut end is the incident polygon's corner.
+  struct Candidate {
+    Vec2 at;
+    int owner, vertex, other;
+  };
+  Candidate c[2];
+  int count = 0;
+  const double u21 = (v21 - v11).dot(tangent), u22 = (v22 - v11).dot(tangent);
+  const Candidate inc_first{v21, inc_owner, incf.first, rf.first};
+  const Candidate inc_last{v22, inc_owner, incf.last, rf.first};
+  if (u21 <= 0.0 || u22 >= ref_length) {
+    // The whole incident face lies beside the slab (overlapping corners, or round-off):
+    // only its end nearest the slab can be the contact.
+    c[count++] = u21 <= 0.0 ? inc_first : inc_last;
+  } else {
+    // The incident face runs against the tangent: v22 is the end near v11.
+    if (u22 < 0.0) {
+      c[count++] = {v22 + (-u22 / (u21 - u22)) * (v21 - v22), ref_owner, rf.first, incf.first};
+    } else {
+      c[count++] = inc_last;
+    }
+    if (u21 > ref_length) {
+      c[count++] = {v21 + ((u21 - ref_length) / (u21 - u22)) * (v22 - v21), ref_owner, rf.last,
+                    incf.first};
+    } else {
+      c[count++] = inc_first;
+    }
+  }
+  for (int k = 0; k < count; ++k) {
+    const double separation = (c[k].at - v11).dot(normal);
+    if (!(separation < max_distance)) continue;
+    m.points[m.point_count++] = {origin + c[k].at - 0.5 * separation * normal, separation,
+                                 manifold_id(c[k].owner, c[k].vertex, c[k].other, false),
+                                 c[k].owner, c[k].vertex};
+  }
+  return m;
+}
+
+}  // namespace ddafit

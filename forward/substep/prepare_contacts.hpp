@@ -1,0 +1,34 @@
+// Stage 3 of a substep-solver step: everything the substeps reuse. Each block's effective
+// inverse mass for the substep length, each contact point's Jacobians and effective
+// masses, and the colouring of the manifolds that lets the sweeps run in parallel.
+#pragma once
+
+#include <vector>
+
+#include "forward/block_system.hpp"
+#include "forward/substep/substep_types.hpp"
+
+namespace ddafit {
+
+// W per block (substep_types.hpp, BlockMass).
+void compute_block_masses(const BlockSystem& system, std::vector<BlockMass>& masses);
+
+// Jacobians, W j and effective masses of every point, at the start of the step. The
+// friction coefficient is set from the point's slip (seed Eq. 2-3); bonded points get
+// their cohesion and tension as impulses over one substep.
+void prepare_contacts(const BlockSystem& system, const std::vector<BlockMass>& masses, double h,
+                      std::vector<SubstepManifold>& manifolds);
+
+// Groups manifolds into colours such that no two manifolds of a colour share a moving
+// block (Box2D v3's constraint graph): a colour's manifolds can be solved at the same
+// time, in any order, and give the same numbers on any number of threads. Greedy, in
+// manifold order. Colours are tracked per block in one 64-bit mask; manifolds that find
+// none free go to colour kSerialColour, which is solved serially.
+constexpr int kSerialColour = 63;
+std::vector<std::vector<int>> colour_manifolds(const BlockSystem& system,
+                                               const std::vector<SubstepManifold>& manifolds);
+
+// Sets the friction coefficient of a point from its slip, predicted half a substep ahead.
+void update_friction(const BlockSystem& system, const SubstepManifold& m, SubstepPoint& p);
+
+}  // namespace ddafit

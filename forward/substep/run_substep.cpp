@@ -1,0 +1,316 @@
+#include "forward/substep/run_substep.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "forward/step/energy_check.hpp"
+#include "forward/substep/block_stress.hpp"
+#include "forward/substep/collide.hpp"
+#include "forward/substep/find_pairs.hpp"
+#include "forward/substep/integrate.hpp"
+#include "forward/substep/prepare_contacts.hpp"
+#include "forward/substep/solve_contacts.hpp"
+
+namespace ddafit {
+namespace {
+
+// Overlap tolerated without push-out, as a fraction of the largest displacement allowed
+// per step: a contact pushed out to exactly zero chatters between touching and not.
+constexpr double kSlopRatio = 1e-3;
+
+// A run stops when an overlap passes this fraction of the smaller block's size: the two
+// blocks are then no longer separated by their contact (a block passing through another).
+constexpr double kFailPenetrationRatio = 0.25;
+
+// Relative normal velocity, as a fraction of the largest step displacement per step,
+// that a touching point may keep after the last sweep and still count as converged.
+constexpr double kConvergedVelocityRatio = 1e-2;
+
+// Most steps the quiet start may take (it stops earlier once settled).
+constexpr int kQuietStartSteps = 500;
+// The quiet start stops once no normal impulse changes by more than this fraction of the
+// largest from one step to the next.
+constexpr double kQuietStartTolerance = 1e-4;
+
+struct SubstepWork {
+  SubstepShapes shapes;
+  std::vector<SubstepManifold> manifolds;
+  std::vector<BlockMass> masses;
+  std::vector<std::vector<int>> colours;
+  std::vector<Vec6> start_velocity, moves, step_moves;
+  std::vector<char> deformable;  // per material: keeps its strain unknowns
+  std::vector<double> reach;  // per block: largest distance of a vertex from the centroid
+};
+
+// The fastest a vertex of block b moves: centroid speed plus the rotation and strain
+// rates times the block's reach.
+double vertex_speed_bound(const Block& b, double reach) {
+  const Vec6& v = b.velocity;
+  return std::hypot(v[0], v[1]) + reach * (std::abs(v[2]) + std::abs(v[3]) + std::abs(v[4]) + std::abs(v[5]));
+}
+
+double block_reach(const BlockSystem& s, int b) {
+  const Block& block = s.blocks[b];
+  double r = 0.0;
+  for (int v = block.first_vertex; v < block.first_vertex + block.vertex_count; ++v)
+    r = std::max(r, (s.vertices[v] - block.centroid).norm());
+  return r;
+}
+
+double block_size(const BlockSystem& s, int b) { return std::sqrt(std::abs(s.blocks[b].area)); }
+
+// The deepest overlap at the end of the step, relative to the smaller block of its pair;
+// and the points still closing after the last sweep.
+void measure_contacts(const BlockSystem& s, const SubstepWork& w, double time, double converged_speed,
+                      SolverReport& report) {
+  for (const SubstepManifold& m : w.manifolds) {
+    const double size = std::min(s.blocks[m.block_a].fixed ? 1e300 : block_size(s, m.block_a),
+                                 s.blocks[m.block_b].fixed ? 1e300 : block_size(s, m.block_b));
+    const Vec6& va = s.blocks[m.block_a].velocity;
+    const Vec6& vb = s.blocks[m.block_b].velocity;
+    for (int q = 0; q < m.point_count; ++q) {
+      const SubstepPoint& p = m.points[q];
+      const double gap = p.separation + p.jb_n.dot(w.step_moves[m.block_b]) - p.ja_n.dot(w.step_moves[m.block_a]);
+      if (gap < 0.0 && p.jb_n.dot(vb) - p.ja_n.dot(va) < -converged_speed) ++report.unconverged_points;
+      if (-gap / size > report.worst_penetration_ratio) {
+        report.worst_penetration_ratio = -gap / size;
+        report.worst_penetration = -gap;
+        report.worst_penetration_time = time;
+        report.worst_penetration_at = "blocks '" + s.block_names[m.block_a] + "' and '" + s.block_names[m.block_b] + "'";
+      }
+    }
+    report.contact_points += m.point_count;
+  }
+}
+
+
+// Broad and narrow phase: this step's manifolds, carrying over the last step's impulses.
+std::string detect(const BlockSystem& s, SubstepWork& w, CollideSettings& settings, StepProfile& profile) {
+  ScopedTimer timer(profile.find_contacts);
+  const auto pairs = find_pairs(s, w.shapes, settings.margin);
+  std::string problem = collide(s, w.shapes, pairs, settings, w.manifolds);
+  settings.first_step = false;
+  return problem;
+}
+
+// Masses, contact Jacobians and colours for substeps of length h, and the sweep settings.
+SweepSettings prepare_step(const BlockSystem& s, SubstepWork& w, const SimulationOptions& o, double h, double slop,
+                           StepProfile& profile) {
+  ScopedTimer timer(profile.assemble);
+  compute_block_masses(s, w.masses);
+  prepare_contacts(s, w.masses, h, w.manifolds);
+  w.colours = colour_manifolds(s, w.manifolds);
+  // The contact spring at a quarter of the substep rate: the stiffest the substeps
+  // resolve (Box2D caps it at 30 Hz for games; at 30 Hz a stack of five 1 m blocks sank
+  // 1 cm into its contacts).
+  const double hertz = o.contact_hertz > 0.0 ? o.contact_hertz : 0.25 / h;
+  SweepSettings sweep;
+  sweep.h = h;
+  sweep.softness = make_softness(hertz, o.contact_damping_ratio, h);
+  sweep.max_pushout_speed = o.max_pushout_speed;
+  sweep.linear_slop = slop;
+  return sweep;
+}
+
+// One substep: integrate velocities, warm start, soft sweep, move, relax sweep, slip.
+void run_one_substep(BlockSystem& s, SubstepWork& w, const SweepSettings& sweep, const Vec2& gravity, bool measured,
+                     StepProfile& profile) {
+  SweepSettings relax = sweep;
+  relax.use_bias = false;
+  {
+    ScopedTimer timer(profile.solve);
+    integrate_velocities(s, w.masses, gravity, sweep.h, w.start_velocity);
+    warm_start(w.manifolds, w.colours, s);
+    solve_contacts(w.manifolds, w.colours, w.step_moves, sweep, s);
+  }
+  {
+    ScopedTimer timer(profile.update);
+    integrate_positions(s, w.masses, sweep.h, w.start_velocity, w.moves, w.step_moves, measured);
+  }
+  {
+    ScopedTimer timer(profile.solve);
+    solve_contacts(w.manifolds, w.colours, w.step_moves, relax, s);
+  }
+  {
+    ScopedTimer timer(profile.update);
+    advance_slip(s, w.moves, w.manifolds);
+  }
+}
+
+// A step of length dt on this step's manifolds: substeps, then each deformable block's
+// stress from its contacts (block_stress.hpp).
+void advance(BlockSystem& s, SubstepWork& w, const SimulationOptions& o, double dt, double slop, const Vec2& gravity,
+             bool measured, StepProfile& profile) {
+  const double h = dt / o.substeps;
+  const SweepSettings sweep = prepare_step(s, w, o, h, slop, profile);
+  std::fill(w.step_moves.begin(), w.step_moves.end(), Vec6::Zero());
+  for (int k = 0; k < o.substeps; ++k) run_one_substep(s, w, sweep, gravity, measured, profile);
+  ScopedTimer timer(profile.update);
+  update_block_stress(s, w.manifolds, w.deformable, dt, false);
+}
+
+// Largest change of any normal impulse since `last` (updated), relative to the largest.
+double impulse_change(const std::vector<SubstepManifold>& manifolds, std::vector<double>& last) {
+  double largest = 0.0, change = 0.0;
+  std::vector<double> now;
+  for (const SubstepManifold& m : manifolds)
+    for (int q = 0; q < m.point_count; ++q) now.push_back(m.points[q].step_normal_impulse);
+  for (size_t i = 0; i < now.size(); ++i) {
+    largest = std::max(largest, std::abs(now[i]));
+    if (now.size() == last.size()) change = std::max(change, std::abs(now[i] - last[i]));
+  }
+  const bool comparable = now.size() == last.size();
+  last.swap(now);
+  return comparable && largest > 0.0 ? change / largest : 1.0;
+}
+
+// Quiet start: the contacts touching at t = 0 take up the weight before the clock runs.
+// Steps of the scene's length with the touching blocks set back to rest after each, their
+// strain following their contacts, until no normal impulse changes by more than
+// kQuietStartTolerance of the largest. Blocks in flight stay exactly as given; the
+// measurement points' origins move with the blocks, and no slip is counted: the slide
+// starts from rest, not with a bounce.
+std::string quiet_start(BlockSystem& s, SubstepWork& w, const SimulationOptions& o, double dt,
+                        CollideSettings& settings, const Vec2& gravity, StepProfile& profile) {
+  ScopedTimer timer(profile.settle);
+  StepProfile ignored;
+  if (std::string problem = detect(s, w, settings, ignored); !problem.empty()) return problem;
+  std::vector<char> touching(s.blocks.size(), 0);
+  for (const SubstepManifold& m : w.manifolds)
+    for (int q = 0; q < m.point_count; ++q)
+      if (m.points[q].separation <= settings.linear_slop) touching[m.block_a] = touching[m.block_b] = 1;
+  std::vector<Vec6> initial(s.blocks.size());
+  std::vector<char> was_fixed(s.blocks.size());
+  for (size_t b = 0; b < s.blocks.size(); ++b) {
+    initial[b] = s.blocks[b].velocity;
+    was_fixed[b] = s.blocks[b].fixed;
+    if (!touching[b]) s.blocks[b].fixed = true;  // in flight: takes no part
+  }
+  std::vector<double> last;
+  for (int k = 0; k < kQuietStartSteps; ++k) {
+    if (k > 0) detect(s, w, settings, ignored);
+    advance(s, w, o, dt, settings.linear_slop, gravity, false, ignored);
+    for (Block& b : s.blocks)
+      if (!b.fixed) b.velocity.setZero();
+    if (impulse_change(w.manifolds, last) <= kQuietStartTolerance) break;
+  }
+  for (size_t b = 0; b < s.blocks.size(); ++b) {
+    s.blocks[b].fixed = was_fixed[b];
+    s.blocks[b].velocity = initial[b];
+  }
+  for (SubstepManifold& m : w.manifolds)
+    for (int q = 0; q < m.point_count; ++q) m.points[q].slip = m.points[q].last_slip = 0.0;
+  settings.first_step = true;  // bonds form between the blocks touching once settled
+  return {};
+}
+
+// The next step: the scene's, grown back by the growth factor after a shorter one, and
+// short enough that no vertex moves further than allowed, counting the speed gravity
+// adds within the step (the contact margin covers that distance).
+double choose_step(const BlockSystem& s, SubstepWork& w, const Scene& scene, double previous, double max_move) {
+  double fastest = 0.0;
+  for (size_t b = 0; b < s.blocks.size(); ++b) {
+    if (s.blocks[b].fixed) continue;
+    w.reach[b] = block_reach(s, static_cast<int>(b));
+    fastest = std::max(fastest, vertex_speed_bound(s.blocks[b], w.reach[b]));
+  }
+  const double g = scene.gravity.norm();
+  // (fastest + g dt) dt <= max_move
+  const double limit = g > 0.0 ? (-fastest + std::sqrt(fastest * fastest + 4.0 * g * max_move)) / (2.0 * g)
+                               : max_move / std::max(fastest, 1e-300);
+  const double step = std::min({scene.max_step, previous * scene.options.step_growth_factor, limit});
+  return std::max(step, scene.options.min_step_ratio * scene.max_step);
+}
+
+// Largest distance a vertex moved in the step (translation plus rotation times reach).
+double largest_move(const BlockSystem& s, const SubstepWork& w) {
+  double moved = 0.0;
+  for (size_t b = 0; b < s.blocks.size(); ++b)
+    if (!s.blocks[b].fixed)
+      moved = std::max(moved, w.step_moves[b].head<2>().norm() + w.reach[b] * std::abs(w.step_moves[b][2]));
+  return moved;
+}
+
+}  // namespace
+
+void run_substep(const Scene& scene, BlockSystem& s, RunRecorder& recorder, SimulationSummary& summary) {
+  const SimulationOptions& o = scene.options;
+  SolverReport& report = summary.solver;
+  StepProfile& profile = summary.profile;
+  RunCounters& run = summary.run;
+  SubstepWork w;
+  if (const std::string bad = build_shapes(s, w.shapes); !bad.empty()) {
+    summary.status = RunStatus::InvalidScene;
+    summary.message = "block '" + bad + "': its polygon could not be split into convex pieces for contact";
+    return;
+  }
+  const size_t n = s.blocks.size();
+  w.start_velocity.assign(n, Vec6::Zero());
+  w.moves.assign(n, Vec6::Zero());
+  w.step_moves.assign(n, Vec6::Zero());
+  w.reach.assign(n, 0.0);
+  for (const Material& m : scene.materials) w.deformable.push_back(!(m.rigid || o.rigid_blocks));
+  const double max_move = o.max_displacement_ratio * s.half_model_size;
+  CollideSettings settings;
+  settings.margin = o.search_distance_factor * max_move;
+  settings.linear_slop = kSlopRatio * max_move;
+  settings.first_step = true;
+  report.substeps = o.substeps;
+  double time = 0.0;
+  if (std::string problem = quiet_start(s, w, o, scene.max_step, settings, scene.gravity, profile); !problem.empty()) {
+    summary.status = RunStatus::InvalidScene;
+    summary.message = "t = 0: " + problem;
+    return;
+  }
+  const EnergyAudit audit = start_energy_audit(s, scene.gravity);
+  recorder.start(s);
+  double step = scene.max_step;
+  run.smallest_step = scene.max_step;
+
+  auto fail = [&](const std::string& why) {
+    std::ostringstream out;
+    out << "t = " << time << " s, step " << run.steps + 1 << ": " << why;
+    summary.status = RunStatus::Failed;
+    summary.message = out.str();
+    run.simulated_time = time;
+    recorder.record_row(time, s);
+  };
+
+  while (!recorder.finished(time)) {
+    if (std::string problem = detect(s, w, settings, profile); !problem.empty()) {
+      summary.status = RunStatus::InvalidScene;
+      summary.message = "t = " + std::to_string(time) + " s: " + problem;
+      return;
+    }
+    step = choose_step(s, w, scene, step, max_move);
+    double landing = -1.0;
+    const double dt = recorder.fit_step(time, step, &landing);
+    advance(s, w, o, dt, settings.linear_slop, scene.gravity, true, profile);
+    time = landing >= 0.0 ? landing : time + dt;
+    ++run.steps;
+    run.smallest_step = std::min(run.smallest_step, dt);
+    run.largest_step = std::max(run.largest_step, dt);
+    {
+      ScopedTimer timer(profile.check_contacts);
+      measure_contacts(s, w, time, kConvergedVelocityRatio * max_move / dt, report);
+      if (largest_move(s, w) > 0.5 * settings.margin) ++report.fast_steps;
+    }
+    recorder.record(time, s);
+    if (report.worst_penetration_ratio > kFailPenetrationRatio) {
+      std::ostringstream why;
+      why << "an overlap of " << report.worst_penetration << " m between " << report.worst_penetration_at << " is "
+          << report.worst_penetration_ratio << " of the smaller block's size: the contacts no longer hold the blocks "
+          << "apart. Raise time.substeps (now " << o.substeps << ") or lower time.step";
+      fail(why.str());
+      return;
+    }
+    if (const std::string problem = check_energy(audit, s, scene.gravity); !problem.empty()) {
+      fail(problem + ", or raise time.substeps");
+      return;
+    }
+  }
+  run.simulated_time = time;
+}
+
+}  // namespace ddafit
