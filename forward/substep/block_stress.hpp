@@ -24,7 +24,9 @@ namespace ddafit {
 // `deformable[m]`: material m keeps its strain unknowns (not rigid). `last_substep`:
 // take each point's impulse of the last substep over `duration` (the quiet start) instead
 // of the step's sum.
+// `relaxation` in (0, 1]: the share of the way to the contacts' mean stress taken now.
 void update_block_stress(BlockSystem& system, const std::vector<SubstepManifold>& manifolds,
-                         const std::vector<char>& deformable, double duration, bool last_substep);
+                         const std::vector<char>& deformable, double duration, bool last_substep,
+                         double relaxation);
 
 }  // namespace ddafit

@@ -1,4 +1,5 @@
 #include "forward/substep/collide.hpp"
+#include "forward/substep/parallel.hpp"
 
 #include <algorithm>
 
@@ -61,14 +62,17 @@ std::string collide(const BlockSystem& s, const SubstepShapes& shapes, const std
   std::vector<SubstepManifold> found(pairs.size());
   std::vector<char> touching(pairs.size(), 0);
   const long n = static_cast<long>(pairs.size());
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n >= kParallelMinimum)
   for (long k = 0; k < n; ++k) {
     const auto [a, b] = pairs[k];
     Vec2 corners_a[kMaxCorners], corners_b[kMaxCorners];
     const int na = gather(s, shapes, a, corners_a);
     const int nb = gather(s, shapes, b, corners_b);
+    const std::span<const char> solid(shapes.solid);
     const Manifold m = collide_polygons(std::span<const Vec2>(corners_a, na), std::span<const Vec2>(corners_b, nb),
-                                        settings.margin, settings.linear_slop);
+                                        settings.margin, settings.linear_slop,
+                                        solid.subspan(shapes.pieces[a].first, na),
+                                        solid.subspan(shapes.pieces[b].first, nb));
     if (m.point_count == 0) continue;
     SubstepManifold& out = found[k];
     touching[k] = 1;

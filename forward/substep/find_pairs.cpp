@@ -18,7 +18,12 @@ std::string build_shapes(const BlockSystem& s, SubstepShapes& shapes) {
     if (pieces.empty()) return s.block_names[b];
     for (const std::vector<int>& piece : pieces) {
       shapes.pieces.push_back({b, static_cast<int>(shapes.corners.size()), static_cast<int>(piece.size())});
-      for (int k : piece) shapes.corners.push_back(block.first_vertex + k);
+      for (size_t k = 0; k < piece.size(); ++k) {
+        const int corner = block.first_vertex + piece[k];
+        const int next = block.first_vertex + piece[(k + 1) % piece.size()];
+        shapes.corners.push_back(corner);
+        shapes.solid.push_back(s.next_vertex(corner) == next ? 1 : 0);
+      }
     }
   }
   return {};

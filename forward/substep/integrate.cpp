@@ -1,4 +1,5 @@
 #include "forward/substep/integrate.hpp"
+#include "forward/substep/parallel.hpp"
 
 #include "forward/step/update_blocks.hpp"
 
@@ -7,7 +8,7 @@ namespace ddafit {
 void integrate_velocities(BlockSystem& s, const std::vector<BlockMass>& masses, const Vec2& gravity, double h,
                           std::vector<Vec6>& start_velocity) {
   const long n = static_cast<long>(s.blocks.size());
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n >= kParallelMinimum)
   for (long b = 0; b < n; ++b) {
     Block& block = s.blocks[b];
     start_velocity[b] = block.velocity;
@@ -23,7 +24,7 @@ void integrate_positions(BlockSystem& s, const std::vector<BlockMass>& masses, d
                          const std::vector<Vec6>& start_velocity, std::vector<Vec6>& moves,
                          std::vector<Vec6>& step_moves, bool measured) {
   const long n = static_cast<long>(s.blocks.size());
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n >= kParallelMinimum)
   for (long b = 0; b < n; ++b) {
     if (!masses[b].moves) continue;
     const Vec6& v1 = s.blocks[b].velocity;

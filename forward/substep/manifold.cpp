@@ -35,9 +35,10 @@ struct Axis {
 // edge along that normal is subtracted: it is zero for a convex polygon, but keeps the
 // value a true lower bound of the gap if a nearly straight vertex leaves a tiny edge
 // whose normal points anywhere.
-Axis best_axis(const Shape& p, const Shape& q, double tiny) {
+Axis best_axis(const Shape& p, const Shape& q, double tiny, std::span<const char> solid) {
   Axis best;
   for (int i = 0; i < p.n; ++i) {
+    if (!solid.empty() && !solid[static_cast<size_t>(i)]) continue;
     const Vec2 p0 = p.at(i), edge = p.at(i + 1) - p0;
     const double length = edge.norm();
     if (!(length > tiny)) continue;
@@ -116,7 +117,7 @@ Ends closest_ends(const Vec2& p1, const Vec2& q1, const Vec2& p2, const Vec2& q2
 }  // namespace
 
 Manifold collide_polygons(std::span<const Vec2> a, std::span<const Vec2> b, double max_distance,
-                          double linear_slop) {
+                          double linear_slop, std::span<const char> a_solid, std::span<const char> b_solid) {
   Manifold m;
   if (a.size() < 3 || b.size() < 3) return m;
   const Vec2 origin = a[0];
@@ -128,13 +129,17 @@ Manifold collide_polygons(std::span<const Vec2> a, std::span<const Vec2> b, doub
 
   // Separating axes of both polygons; apart along any axis by more than the margin
   // means no contact at all.
-  const Axis axis_a = best_axis(sa, sb, tiny), axis_b = best_axis(sb, sa, tiny);
-  if (axis_a.edge < 0 || axis_b.edge < 0) return m;
+  const Axis axis_a = best_axis(sa, sb, tiny, a_solid), axis_b = best_axis(sb, sa, tiny, b_solid);
+  if (axis_a.edge < 0 && axis_b.edge < 0) return m;
   if (axis_a.separation > max_distance || axis_b.separation > max_distance) return m;
+  const auto cut_in = [](std::span<const char> solid) {
+    return std::find(solid.begin(), solid.end(), char{0}) != solid.end();
+  };
+  const bool has_cuts = cut_in(a_solid) || cut_in(b_solid);
 
   // Reference polygon: a unless b's axis is clearly better, so that two equally good
   // axes do not swap the reference (and the point ids) from one call to the next.
-  const bool flip = axis_b.separation > axis_a.separation + 0.1 * linear_slop;
+  const bool flip = axis_a.edge < 0 || (axis_b.edge >= 0 && axis_b.separation > axis_a.separation + 0.1 * linear_slop);
   const Shape& ref = flip ? sb : sa;
   const Shape& inc = flip ? sa : sb;
   const int ref_owner = flip ? 1 : 0, inc_owner = 1 - ref_owner;
@@ -147,7 +152,9 @@ Manifold collide_polygons(std::span<const Vec2> a, std::span<const Vec2> b, doub
   // Incident face: the edge of the other polygon facing the reference face the most.
   int inc_edge = -1;
   double facing = kInfinity;
+  const std::span<const char> inc_solid = flip ? a_solid : b_solid;
   for (int j = 0; j < inc.n; ++j) {
+    if (!inc_solid.empty() && !inc_solid[static_cast<size_t>(j)]) continue;
     const Vec2 edge = inc.at(j + 1) - inc.at(j);
     const double length = edge.norm();
     if (!(length > tiny)) continue;
@@ -212,7 +219,9 @@ Manifold collide_polygons(std::span<const Vec2> a, std::span<const Vec2> b, doub
   }
   for (int k = 0; k < count; ++k) {
     const double separation = (c[k].at - v11).dot(normal);
-    if (!(separation < max_distance)) continue;
+    // Deeper than the margin is not a contact a step can make: with cuts (solid edges
+    // only as reference faces) it is a corner read across a cut, inside the block.
+    if (!(separation < max_distance) || (has_cuts && !(separation > -max_distance))) continue;
     m.points[m.point_count++] = {origin + c[k].at - 0.5 * separation * normal, separation,
                                  manifold_id(c[k].owner, c[k].vertex, c[k].other, false),
                                  c[k].owner, c[k].vertex};

@@ -52,7 +52,18 @@ constexpr std::uint32_t manifold_id(int owner, int vertex, int other_feature, bo
 // Parallel faces: when the two faces are parallel (within 1e-5 rad) and overlap along
 // the face, the contact is a face contact (two clipped points) even if the gap is open;
 // only faces that do not overlap give the vertex-vertex point.
+//
+// Solid edges: a convex piece of a concave block has edges that run inside the block
+// (the cuts of its decomposition). Such an edge is no face: a neighbour can only be
+// across it by overlapping the block's other pieces, and taking it as the reference face
+// pushed neighbours into the block (0.5 m deep on Vajont section I). `a_solid[i]` /
+// `b_solid[i]` false marks edge i (vertex i to i + 1) as such a cut: it still separates,
+// but is never a reference or incident face. Empty spans: every edge is solid. Where a
+// polygon has cuts, points deeper than max_distance are dropped: no step moves a block
+// that far into another, and such a point is a corner read across a cut, inside the
+// block (one read 18 m "deep" on Vajont section I).
 Manifold collide_polygons(std::span<const Vec2> a, std::span<const Vec2> b, double max_distance,
-                          double linear_slop);
+                          double linear_slop, std::span<const char> a_solid = {},
+                          std::span<const char> b_solid = {});
 
 }  // namespace ddafit

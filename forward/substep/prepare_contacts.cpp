@@ -1,4 +1,5 @@
 #include "forward/substep/prepare_contacts.hpp"
+#include "forward/substep/parallel.hpp"
 
 #include <Eigen/Cholesky>
 #include <Eigen/LU>
@@ -12,7 +13,7 @@ namespace ddafit {
 void compute_block_masses(const BlockSystem& s, std::vector<BlockMass>& masses) {
   masses.resize(s.blocks.size());
   const long n = static_cast<long>(s.blocks.size());
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n >= kParallelMinimum)
   for (long b = 0; b < n; ++b) {
     const Block& block = s.blocks[b];
     BlockMass& out = masses[b];
@@ -34,7 +35,7 @@ void update_friction(const BlockSystem& s, const SubstepManifold& m, SubstepPoin
 void prepare_contacts(const BlockSystem& s, const std::vector<BlockMass>& masses, double h,
                       std::vector<SubstepManifold>& manifolds) {
   const long n = static_cast<long>(manifolds.size());
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n >= kParallelMinimum)
   for (long k = 0; k < n; ++k) {
     SubstepManifold& m = manifolds[k];
     const Block& a = s.blocks[m.block_a];

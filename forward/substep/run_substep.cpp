@@ -19,6 +19,10 @@ namespace {
 // per step: a contact pushed out to exactly zero chatters between touching and not.
 constexpr double kSlopRatio = 1e-3;
 
+// Share of the way to the contacts' mean stress a block's stress moves in one step
+// (block_stress.hpp).
+constexpr double kStressRelaxation = 0.1;
+
 // A run stops when an overlap passes this fraction of the smaller block's size: the two
 // blocks are then no longer separated by their contact (a block passing through another).
 constexpr double kFailPenetrationRatio = 0.25;
@@ -147,7 +151,7 @@ void advance(BlockSystem& s, SubstepWork& w, const SimulationOptions& o, double 
   std::fill(w.step_moves.begin(), w.step_moves.end(), Vec6::Zero());
   for (int k = 0; k < o.substeps; ++k) run_one_substep(s, w, sweep, gravity, measured, profile);
   ScopedTimer timer(profile.update);
-  update_block_stress(s, w.manifolds, w.deformable, dt, false);
+  update_block_stress(s, w.manifolds, w.deformable, dt, false, kStressRelaxation);
 }
 
 // Largest change of any normal impulse since `last` (updated), relative to the largest.

@@ -1,4 +1,5 @@
 #include "forward/substep/solve_contacts.hpp"
+#include "forward/substep/parallel.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -19,7 +20,7 @@ void for_each_coloured(const std::vector<std::vector<int>>& colours, Body&& body
       for (long k = 0; k < n; ++k) body(members[k]);
       continue;
     }
-#pragma omp parallel for schedule(static) if (n > 256)
+#pragma omp parallel for schedule(static) if (n >= kParallelMinimum)
     for (long k = 0; k < n; ++k) body(members[k]);
   }
 }
@@ -95,7 +96,7 @@ void solve_contacts(std::vector<SubstepManifold>& manifolds, const std::vector<s
 
 void advance_slip(const BlockSystem& s, const std::vector<Vec6>& moves, std::vector<SubstepManifold>& manifolds) {
   const long n = static_cast<long>(manifolds.size());
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n >= kParallelMinimum)
   for (long k = 0; k < n; ++k) {
     SubstepManifold& m = manifolds[k];
     const Vec6& da = moves[m.block_a];

@@ -23,6 +23,9 @@ struct ConvexPiece {
 struct SubstepShapes {
   std::vector<ConvexPiece> pieces;
   std::vector<int> corners;
+  // Per corner: 1 if the edge to the next corner is part of the block's boundary, 0 if it
+  // is a cut between two pieces of the block (manifold.hpp, solid edges).
+  std::vector<char> solid;
 };
 
 // One contact point of a manifold. The first group survives from step to step (matched
