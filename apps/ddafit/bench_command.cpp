@@ -67,6 +67,7 @@ int run_bench(const BenchArgs& args) {
     std::vector<std::string> sets = args.sets;
     sets.push_back(fmt::format("mesh.block_size={}", size));
     sets.push_back(fmt::format("time.duration={}", args.duration));
+    if (!args.integrator.empty()) sets.push_back("time.integrator=" + args.integrator);
     Scene scene;
     if (!load_scene(args.scene, sets, scene)) return kExitBadInput;
     BenchRow row;
@@ -86,14 +87,18 @@ int run_bench(const BenchArgs& args) {
   auto csv = fmt::output_file(args.out + "/bench.csv");
   csv.print("block_size,blocks,steps,open_close_iterations,simulated_time,step_cuts,penalty_raises,wall,"
             "settle,find_contacts,assemble,solve,check_contacts,update,peak_memory_mib,factorizations,"
-            "symbolic_analyses,status\n");
+            "symbolic_analyses,status,integrator,substeps,contact_points_per_step,worst_penetration_ratio\n");
   for (const BenchRow& row : rows) {
     const StepProfile& p = row.summary.profile;
     const RunCounters& r = row.summary.run;
-    csv.print("{},{},{},{},{},{},{},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:.1f},{},{},{}\n",
+    const SolverReport& solver = row.summary.solver;
+    csv.print("{},{},{},{},{},{},{},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:.1f},{},{},{},{},{},{:.1f},{:.5f}\n",
               row.block_size, row.blocks, r.steps, r.open_close_iterations, r.simulated_time, r.step_cuts,
               r.penalty_raises, p.total, p.settle, p.find_contacts, p.assemble, p.solve, p.check_contacts, p.update,
-              row.peak_mib, r.factorizations, r.symbolic_analyses, row.summary.status == RunStatus::Completed ? "completed" : "failed");
+              row.peak_mib, r.factorizations, r.symbolic_analyses,
+              row.summary.status == RunStatus::Completed ? "completed" : "failed", to_string(solver.integrator),
+              solver.substeps, static_cast<double>(solver.contact_points) / std::max<double>(1.0, static_cast<double>(r.steps)),
+              solver.worst_penetration_ratio);
   }
   csv.close();
   std::string reason;

@@ -76,6 +76,7 @@ struct BenchArgs {
   double duration = 1.0;  // s of slide simulated per size
   std::string out = "ddafit-bench";
   std::vector<std::string> sets;
+  std::string integrator;  // implicit | substep | auto; empty = the scene's
 };
 int run_bench(const BenchArgs& args);
 

@@ -74,6 +74,8 @@ int main(int argc, char** argv) {
   bench->add_option("--duration", be.duration, "s of slide simulated per size")->capture_default_str();
   bench->add_option("--out", be.out, "output folder")->capture_default_str();
   bench->add_option("--set", be.sets, "override a scene value, KEY=VALUE (repeatable)");
+  bench->add_option("--integrator", be.integrator, "solver: implicit, substep or auto (default: the scene's)")
+      ->check(CLI::IsMember({"implicit", "substep", "auto"}));
 
   CLI::App* verify = app.add_subcommand("verify", "run the built-in analytic verification suite");
   verify->add_option("--only", ver.only, "run only the checks whose name contains this text");

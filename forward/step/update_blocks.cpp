@@ -23,7 +23,7 @@ double max_vertex_displacement(const BlockSystem& s, const Eigen::VectorXd& d) {
   return largest;
 }
 
-void displace_block(BlockSystem& s, int b, const Vec6& db, bool measured, const Vec3* stress_strain) {
+void displace_block(BlockSystem& s, int b, const Vec6& db, bool measured) {
   Block& block = s.blocks[b];
   for (int v = block.first_vertex; v < block.first_vertex + block.vertex_count; ++v)
     s.vertices[v] += exact_point_displacement(s.vertices[v], block.centroid, db);
@@ -34,7 +34,7 @@ void displace_block(BlockSystem& s, int b, const Vec6& db, bool measured, const 
     p.position += shift;
     if (!measured) p.initial_position += shift;
   }
-  block.stress += s.elastic[block.material] * (stress_strain ? *stress_strain : Vec3(db.segment<3>(3)));
+  block.stress += s.elastic[block.material] * db.segment<3>(3);
   refresh_block_geometry(s, b);
 }
 

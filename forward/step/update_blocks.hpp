@@ -19,10 +19,8 @@ double block_displacement(const BlockSystem& system, int b, const Vec6& db);
 
 // Moves block b and its material points by db (exact rotation), adds the strain's
 // stress and refreshes the block's geometry. When the motion is not part of the
-// measured history (settling), the points' origins move with them. The stress grows by
-// C times the strain of db, or of `stress_strain` when given (the substep solver's
-// backward-Euler elasticity takes the end-of-substep strain rate, forward/substep/integrate.hpp).
-void displace_block(BlockSystem& system, int b, const Vec6& db, bool measured, const Vec3* stress_strain = nullptr);
+// measured history (settling), the points' origins move with them.
+void displace_block(BlockSystem& system, int b, const Vec6& db, bool measured);
 
 // Deepest penetration (> 0) among closed contacts that the step made deeper, and which
 // contact it is. Depth counts from where the spring is unloaded (spring_reference), so

@@ -25,8 +25,9 @@ namespace ddafit {
 // take each point's impulse of the last substep over `duration` (the quiet start) instead
 // of the step's sum.
 // `relaxation` in (0, 1]: the share of the way to the contacts' mean stress taken now.
+// `measured` false (the quiet start): the measurement points' origins move with the strain.
 void update_block_stress(BlockSystem& system, const std::vector<SubstepManifold>& manifolds,
                          const std::vector<char>& deformable, double duration, bool last_substep,
-                         double relaxation);
+                         double relaxation, bool measured);
 
 }  // namespace ddafit

@@ -1,25 +1,30 @@
-// The two integration stages of every substep (Box2D v3's soft step keeps them apart
+// The integration stages of the substep solver (Box2D v3's soft step keeps them apart
 // from the contact sweeps).
 #pragma once
 
 #include <vector>
 
 #include "forward/block_system.hpp"
-#include "forward/substep/substep_types.hpp"
+#include "forward/substep/solve_contacts.hpp"
 
 namespace ddafit {
 
-// v1 = v0 + h g: gravity on the rigid-body unknowns (the strain ones carry no inertia,
-// substep_types.hpp). Keeps v0 in `start_velocity` for the position update.
-void integrate_velocities(BlockSystem& system, const std::vector<BlockMass>& masses, const Vec2& gravity, double h,
-                          std::vector<Vec6>& start_velocity);
+// v1 = v0 + h g on every moving block (the strain unknowns carry no inertia,
+// substep_types.hpp; a uniform body force has no moment about the centroid). Keeps v0 in
+// `start_velocity` for the position update.
+void integrate_velocities(SweepState& state, const Vec2& gravity, double h, std::vector<Vec3>& start_velocity);
 
-// Moves each block by d = h (v0 + v1) / 2 with the exact rotation: the trapezoidal rule
+// The move of each block over the substep, d = h (v0 + v1) / 2: the trapezoidal rule
 // integrates free flight and steady sliding exactly (a symplectic x += h v1 would lag by
-// a h^2 / 2 per substep). Writes each block's d to `moves` and adds it to `step_moves`.
-// `measured` false (the quiet start) moves the measurement points' origins with them.
-void integrate_positions(BlockSystem& system, const std::vector<BlockMass>& masses, double h,
-                         const std::vector<Vec6>& start_velocity, std::vector<Vec6>& moves,
-                         std::vector<Vec6>& step_moves, bool measured = true);
+// a h^2 / 2 per substep). Writes d to `moves` and adds it to the state's step moves.
+void integrate_positions(SweepState& state, double h, const std::vector<Vec3>& start_velocity,
+                         std::vector<Vec3>& moves);
+
+// At the end of the step: moves every block by its step move with the exact rotation
+// about its centroid. Turns about the centroid and translations compose exactly, so one
+// move per step equals the substeps' moves in sequence. Sets the blocks' rates to the
+// sweeps' velocities (no strain rate). `measured` false (the quiet start) moves the
+// measurement points' origins with them.
+void move_blocks(BlockSystem& system, const SweepState& state, bool measured);
 
 }  // namespace ddafit

@@ -57,8 +57,8 @@ constexpr std::uint32_t manifold_id(int owner, int vertex, int other_feature, bo
 // (the cuts of its decomposition). Such an edge is no face: a neighbour can only be
 // across it by overlapping the block's other pieces, and taking it as the reference face
 // pushed neighbours into the block (0.5 m deep on Vajont section I). `a_solid[i]` /
-// `b_solid[i]` false marks edge i (vertex i to i + 1) as such a cut: it still separates,
-// but is never a reference or incident face. Empty spans: every edge is solid. Where a
+// `b_solid[i]` false marks edge i (vertex i to i + 1) as such a cut: it is never a
+// separating axis, a reference face or an incident face. Empty spans: every edge is solid. Where a
 // polygon has cuts, points deeper than max_distance are dropped: no step moves a block
 // that far into another, and such a point is a corner read across a cut, inside the
 // block (one read 18 m "deep" on Vajont section I).

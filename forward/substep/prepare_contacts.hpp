@@ -1,6 +1,6 @@
-// Stage 3 of a substep-solver step: everything the substeps reuse. Each block's effective
-// inverse mass for the substep length, each contact point's Jacobians and effective
-// masses, and the colouring of the manifolds that lets the sweeps run in parallel.
+// Stage 3 of a substep-solver step: everything the substeps reuse. Each block's inverse
+// mass and inertia, each contact point's lever arms and effective masses, and the
+// colouring of the manifolds that lets the sweeps run in parallel.
 #pragma once
 
 #include <vector>
@@ -10,10 +10,10 @@
 
 namespace ddafit {
 
-// W per block (substep_types.hpp, BlockMass).
+// Inverse mass and inertia per block (substep_types.hpp, BlockMass).
 void compute_block_masses(const BlockSystem& system, std::vector<BlockMass>& masses);
 
-// Jacobians, W j and effective masses of every point, at the start of the step. The
+// Lever arms and effective masses of every point, at the start of the step. The
 // friction coefficient is set from the point's slip (seed Eq. 2-3); bonded points get
 // their cohesion and tension as impulses over one substep.
 void prepare_contacts(const BlockSystem& system, const std::vector<BlockMass>& masses, double h,

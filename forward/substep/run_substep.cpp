@@ -40,9 +40,9 @@ constexpr double kQuietStartTolerance = 1e-4;
 struct SubstepWork {
   SubstepShapes shapes;
   std::vector<SubstepManifold> manifolds;
-  std::vector<BlockMass> masses;
+  SweepState state;  // velocities, step moves and masses the sweeps work on
   std::vector<std::vector<int>> colours;
-  std::vector<Vec6> start_velocity, moves, step_moves;
+  std::vector<Vec3> start_velocity, moves;
   std::vector<char> deformable;  // per material: keeps its strain unknowns
   std::vector<double> reach;  // per block: largest distance of a vertex from the centroid
 };
@@ -71,12 +71,13 @@ void measure_contacts(const BlockSystem& s, const SubstepWork& w, double time, d
   for (const SubstepManifold& m : w.manifolds) {
     const double size = std::min(s.blocks[m.block_a].fixed ? 1e300 : block_size(s, m.block_a),
                                  s.blocks[m.block_b].fixed ? 1e300 : block_size(s, m.block_b));
-    const Vec6& va = s.blocks[m.block_a].velocity;
-    const Vec6& vb = s.blocks[m.block_b].velocity;
+    const Vec3& va = w.state.velocity[m.block_a];
+    const Vec3& vb = w.state.velocity[m.block_b];
     for (int q = 0; q < m.point_count; ++q) {
       const SubstepPoint& p = m.points[q];
-      const double gap = p.separation + p.jb_n.dot(w.step_moves[m.block_b]) - p.ja_n.dot(w.step_moves[m.block_a]);
-      if (gap < 0.0 && p.jb_n.dot(vb) - p.ja_n.dot(va) < -converged_speed) ++report.unconverged_points;
+      const double gap = current_gap(m, p, w.state.step_moves);
+      const double vn = m.normal.dot(velocity_at(vb, p.rb) - velocity_at(va, p.ra));
+      if (gap < 0.0 && vn < -converged_speed) ++report.unconverged_points;
       if (-gap / size > report.worst_penetration_ratio) {
         report.worst_penetration_ratio = -gap / size;
         report.worst_penetration = -gap;
@@ -102,8 +103,8 @@ std::string detect(const BlockSystem& s, SubstepWork& w, CollideSettings& settin
 SweepSettings prepare_step(const BlockSystem& s, SubstepWork& w, const SimulationOptions& o, double h, double slop,
                            StepProfile& profile) {
   ScopedTimer timer(profile.assemble);
-  compute_block_masses(s, w.masses);
-  prepare_contacts(s, w.masses, h, w.manifolds);
+  compute_block_masses(s, w.state.masses);
+  prepare_contacts(s, w.state.masses, h, w.manifolds);
   w.colours = colour_manifolds(s, w.manifolds);
   // The contact spring at a quarter of the substep rate: the stiffest the substeps
   // resolve (Box2D caps it at 30 Hz for games; at 30 Hz a stack of five 1 m blocks sank
@@ -118,40 +119,34 @@ SweepSettings prepare_step(const BlockSystem& s, SubstepWork& w, const Simulatio
 }
 
 // One substep: integrate velocities, warm start, soft sweep, move, relax sweep, slip.
-void run_one_substep(BlockSystem& s, SubstepWork& w, const SweepSettings& sweep, const Vec2& gravity, bool measured,
+void run_one_substep(const BlockSystem& s, SubstepWork& w, const SweepSettings& sweep, const Vec2& gravity,
                      StepProfile& profile) {
   SweepSettings relax = sweep;
   relax.use_bias = false;
-  {
-    ScopedTimer timer(profile.solve);
-    integrate_velocities(s, w.masses, gravity, sweep.h, w.start_velocity);
-    warm_start(w.manifolds, w.colours, s);
-    solve_contacts(w.manifolds, w.colours, w.step_moves, sweep, s);
-  }
-  {
-    ScopedTimer timer(profile.update);
-    integrate_positions(s, w.masses, sweep.h, w.start_velocity, w.moves, w.step_moves, measured);
-  }
-  {
-    ScopedTimer timer(profile.solve);
-    solve_contacts(w.manifolds, w.colours, w.step_moves, relax, s);
-  }
-  {
-    ScopedTimer timer(profile.update);
-    advance_slip(s, w.moves, w.manifolds);
-  }
+  ScopedTimer timer(profile.solve);
+  integrate_velocities(w.state, gravity, sweep.h, w.start_velocity);
+  warm_start(w.manifolds, w.colours, w.state);
+  solve_contacts(w.manifolds, w.colours, sweep, w.state);
+  integrate_positions(w.state, sweep.h, w.start_velocity, w.moves);
+  solve_contacts(w.manifolds, w.colours, relax, w.state);
+  advance_slip(s, w.moves, w.manifolds);
 }
 
-// A step of length dt on this step's manifolds: substeps, then each deformable block's
-// stress from its contacts (block_stress.hpp).
+// A step of length dt on this step's manifolds: substeps, then the blocks move (once,
+// exactly: move_blocks) and each deformable block takes its stress from its contacts
+// (block_stress.hpp).
 void advance(BlockSystem& s, SubstepWork& w, const SimulationOptions& o, double dt, double slop, const Vec2& gravity,
              bool measured, StepProfile& profile) {
   const double h = dt / o.substeps;
   const SweepSettings sweep = prepare_step(s, w, o, h, slop, profile);
-  std::fill(w.step_moves.begin(), w.step_moves.end(), Vec6::Zero());
-  for (int k = 0; k < o.substeps; ++k) run_one_substep(s, w, sweep, gravity, measured, profile);
+  for (size_t b = 0; b < s.blocks.size(); ++b) {
+    w.state.velocity[b] = s.blocks[b].velocity.head<3>();
+    w.state.step_moves[b].setZero();
+  }
+  for (int k = 0; k < o.substeps; ++k) run_one_substep(s, w, sweep, gravity, profile);
   ScopedTimer timer(profile.update);
-  update_block_stress(s, w.manifolds, w.deformable, dt, false, kStressRelaxation);
+  move_blocks(s, w.state, measured);
+  update_block_stress(s, w.manifolds, w.deformable, dt, false, kStressRelaxation, measured);
 }
 
 // Largest change of any normal impulse since `last` (updated), relative to the largest.
@@ -232,7 +227,7 @@ double largest_move(const BlockSystem& s, const SubstepWork& w) {
   double moved = 0.0;
   for (size_t b = 0; b < s.blocks.size(); ++b)
     if (!s.blocks[b].fixed)
-      moved = std::max(moved, w.step_moves[b].head<2>().norm() + w.reach[b] * std::abs(w.step_moves[b][2]));
+      moved = std::max(moved, w.state.step_moves[b].head<2>().norm() + w.reach[b] * std::abs(w.state.step_moves[b][2]));
   return moved;
 }
 
@@ -250,9 +245,10 @@ void run_substep(const Scene& scene, BlockSystem& s, RunRecorder& recorder, Simu
     return;
   }
   const size_t n = s.blocks.size();
-  w.start_velocity.assign(n, Vec6::Zero());
-  w.moves.assign(n, Vec6::Zero());
-  w.step_moves.assign(n, Vec6::Zero());
+  w.start_velocity.assign(n, Vec3::Zero());
+  w.moves.assign(n, Vec3::Zero());
+  w.state.velocity.assign(n, Vec3::Zero());
+  w.state.step_moves.assign(n, Vec3::Zero());
   w.reach.assign(n, 0.0);
   for (const Material& m : scene.materials) w.deformable.push_back(!(m.rigid || o.rigid_blocks));
   const double max_move = o.max_displacement_ratio * s.half_model_size;
@@ -284,7 +280,9 @@ void run_substep(const Scene& scene, BlockSystem& s, RunRecorder& recorder, Simu
   while (!recorder.finished(time)) {
     if (std::string problem = detect(s, w, settings, profile); !problem.empty()) {
       summary.status = RunStatus::InvalidScene;
-      summary.message = "t = " + std::to_string(time) + " s: " + problem;
+      std::ostringstream out;
+      out << "t = " << time << " s, step " << run.steps + 1 << ": " << problem;
+      summary.message = out.str();
       return;
     }
     step = choose_step(s, w, scene, step, max_move);
@@ -310,7 +308,7 @@ void run_substep(const Scene& scene, BlockSystem& s, RunRecorder& recorder, Simu
       return;
     }
     if (const std::string problem = check_energy(audit, s, scene.gravity); !problem.empty()) {
-      fail(problem + ", or raise time.substeps");
+      fail(problem);
       return;
     }
   }

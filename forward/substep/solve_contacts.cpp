@@ -25,10 +25,15 @@ void for_each_coloured(const std::vector<std::vector<int>>& colours, Body&& body
   }
 }
 
-// Applies impulse P along (wa, wb): v_a -= P wa, v_b += P wb.
-inline void apply(Vec6& va, Vec6& vb, const Vec6& wa, const Vec6& wb, double impulse) {
-  va.noalias() -= impulse * wa;
-  vb.noalias() += impulse * wb;
+// Applies impulse P (a vector) at the point: -P on block a, +P on block b.
+inline void apply(Vec3& va, Vec3& vb, const BlockMass& ma, const BlockMass& mb, const SubstepPoint& p,
+                  const Vec2& impulse) {
+  va[0] -= ma.inverse_mass * impulse.x();
+  va[1] -= ma.inverse_mass * impulse.y();
+  va[2] -= ma.inverse_inertia * cross2(p.ra, impulse);
+  vb[0] += mb.inverse_mass * impulse.x();
+  vb[1] += mb.inverse_mass * impulse.y();
+  vb[2] += mb.inverse_inertia * cross2(p.rb, impulse);
 }
 
 }  // namespace
@@ -43,77 +48,77 @@ ContactSoftness make_softness(double hertz, double zeta, double h) {
 }
 
 void warm_start(const std::vector<SubstepManifold>& manifolds, const std::vector<std::vector<int>>& colours,
-                BlockSystem& s) {
+                SweepState& st) {
   for_each_coloured(colours, [&](int k) {
     const SubstepManifold& m = manifolds[k];
-    Vec6& va = s.blocks[m.block_a].velocity;
-    Vec6& vb = s.blocks[m.block_b].velocity;
+    Vec3& va = st.velocity[m.block_a];
+    Vec3& vb = st.velocity[m.block_b];
     for (int q = 0; q < m.point_count; ++q) {
       const SubstepPoint& p = m.points[q];
-      apply(va, vb, p.wa_n, p.wb_n, p.normal_impulse);
-      apply(va, vb, p.wa_t, p.wb_t, p.tangent_impulse);
+      apply(va, vb, st.masses[m.block_a], st.masses[m.block_b], p,
+            p.normal_impulse * m.normal + p.tangent_impulse * m.tangent);
     }
   });
 }
 
 void solve_contacts(std::vector<SubstepManifold>& manifolds, const std::vector<std::vector<int>>& colours,
-                    const std::vector<Vec6>& step_moves, const SweepSettings& st, BlockSystem& s) {
-  const double inv_h = 1.0 / st.h;
+                    const SweepSettings& settings, SweepState& st) {
+  const double inv_h = 1.0 / settings.h;
   for_each_coloured(colours, [&](int k) {
     SubstepManifold& m = manifolds[k];
-    Vec6& va = s.blocks[m.block_a].velocity;
-    Vec6& vb = s.blocks[m.block_b].velocity;
-    const Vec6& da = step_moves[m.block_a];
-    const Vec6& db = step_moves[m.block_b];
+    Vec3& va = st.velocity[m.block_a];
+    Vec3& vb = st.velocity[m.block_b];
+    const BlockMass& ma = st.masses[m.block_a];
+    const BlockMass& mb = st.masses[m.block_b];
     for (int q = 0; q < m.point_count; ++q) {
       SubstepPoint& p = m.points[q];
       // Normal: the gap now, from the step's start and the blocks' moves since.
-      const double gap = p.separation + p.jb_n.dot(db) - p.ja_n.dot(da);
+      const double gap = current_gap(m, p, st.step_moves);
       double bias = 0.0, mass_scale = 1.0, impulse_scale = 0.0;
       if (gap > 0.0) {
         bias = gap * inv_h;  // speculative: may close the gap within the substep, not more
-      } else if (st.use_bias) {
-        bias = std::max(st.softness.bias_rate * std::min(0.0, gap + st.linear_slop), -st.max_pushout_speed);
-        mass_scale = st.softness.mass_scale;
-        impulse_scale = st.softness.impulse_scale;
+      } else if (settings.use_bias) {
+        bias = std::max(settings.softness.bias_rate * std::min(0.0, gap + settings.linear_slop),
+                        -settings.max_pushout_speed);
+        mass_scale = settings.softness.mass_scale;
+        impulse_scale = settings.softness.impulse_scale;
       }
-      const double vn = p.jb_n.dot(vb) - p.ja_n.dot(va);
+      const double vn = m.normal.dot(velocity_at(vb, p.rb) - velocity_at(va, p.ra));
       const double change = -p.normal_mass * mass_scale * (vn + bias) - impulse_scale * p.normal_impulse;
       // Contact law: compression only, unless a bond holds tension (forward/contact_law.hpp).
       const double total = std::max(p.normal_impulse + change, -p.tension_impulse);
-      apply(va, vb, p.wa_n, p.wb_n, total - p.normal_impulse);
+      apply(va, vb, ma, mb, p, (total - p.normal_impulse) * m.normal);
       p.normal_impulse = total;
 
       // Friction: Coulomb's cap mu N (seed Eq. 2-3 for mu) plus cohesion while bonded.
       const double cap = p.friction * std::max(p.normal_impulse, 0.0) + p.cohesion_impulse;
-      const double vt = p.jb_t.dot(vb) - p.ja_t.dot(va);
+      const double vt = m.tangent.dot(velocity_at(vb, p.rb) - velocity_at(va, p.ra));
       const double tangent = std::clamp(p.tangent_impulse - p.tangent_mass * vt, -cap, cap);
-      apply(va, vb, p.wa_t, p.wb_t, tangent - p.tangent_impulse);
+      apply(va, vb, ma, mb, p, (tangent - p.tangent_impulse) * m.tangent);
       p.tangent_impulse = tangent;
     }
   });
 }
 
-void advance_slip(const BlockSystem& s, const std::vector<Vec6>& moves, std::vector<SubstepManifold>& manifolds) {
+void advance_slip(const BlockSystem& s, const std::vector<Vec3>& moves, std::vector<SubstepManifold>& manifolds) {
   const long n = static_cast<long>(manifolds.size());
 #pragma omp parallel for schedule(static) if (n >= kParallelMinimum)
   for (long k = 0; k < n; ++k) {
     SubstepManifold& m = manifolds[k];
-    const Vec6& da = moves[m.block_a];
-    const Vec6& db = moves[m.block_b];
     for (int q = 0; q < m.point_count; ++q) {
       SubstepPoint& p = m.points[q];
       p.step_normal_impulse += p.normal_impulse;
       p.step_tangent_impulse += p.tangent_impulse;
-      if (p.normal_impulse <= 0.0) {
+      if (p.normal_impulse <= -0.999 * p.tension_impulse) {
+        // Open (or torn at its tensile strength): no slip, and the bond is gone.
         p.last_slip = 0.0;
-        if (p.normal_impulse < 0.0 || p.tension_impulse == 0.0) p.bonded = false;
+        p.bonded = false;
+        p.cohesion_impulse = p.tension_impulse = 0.0;
         continue;
       }
-      p.last_slip = std::abs(p.jb_t.dot(db) - p.ja_t.dot(da));
-      const double cap = p.friction * p.normal_impulse + p.cohesion_impulse;
-      const bool sliding = std::abs(p.tangent_impulse) >= 0.999 * cap;
-      if (sliding && p.bonded) {
+      p.last_slip = std::abs(m.tangent.dot(velocity_at(moves[m.block_b], p.rb) - velocity_at(moves[m.block_a], p.ra)));
+      const double cap = p.friction * std::max(p.normal_impulse, 0.0) + p.cohesion_impulse;
+      if (p.bonded && std::abs(p.tangent_impulse) >= 0.999 * cap) {
         p.bonded = false;  // cohesion and tension are lost once the contact slides
         p.cohesion_impulse = p.tension_impulse = 0.0;
       }

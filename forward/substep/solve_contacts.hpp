@@ -30,16 +30,28 @@ struct SweepSettings {
   bool use_bias = true;            // false in the relax sweep
 };
 
-// The velocities of every block change by W J^T P for each point's impulse P. `step_moves`
-// holds each block's displacement so far in the step (first order, as T), from which the
-// current gap of each point follows without new geometry.
+// The blocks' rigid-body velocities (vx, vy, w) that the sweeps change, and their moves
+// (dx, dy, dtheta) since the start of the step, from which each point's current gap
+// follows without new geometry.
+struct SweepState {
+  std::vector<Vec3> velocity;
+  std::vector<Vec3> step_moves;
+  std::vector<BlockMass> masses;
+};
+
 void warm_start(const std::vector<SubstepManifold>& manifolds, const std::vector<std::vector<int>>& colours,
-                BlockSystem& system);
+                SweepState& state);
 void solve_contacts(std::vector<SubstepManifold>& manifolds, const std::vector<std::vector<int>>& colours,
-                    const std::vector<Vec6>& step_moves, const SweepSettings& settings, BlockSystem& system);
+                    const SweepSettings& settings, SweepState& state);
 
 // After a substep moved the blocks by `moves`: the slip of each touching point (seed Eq. 2)
 // and, where it changed, its friction coefficient; a bond is lost once its point slides or opens.
-void advance_slip(const BlockSystem& system, const std::vector<Vec6>& moves, std::vector<SubstepManifold>& manifolds);
+void advance_slip(const BlockSystem& system, const std::vector<Vec3>& moves, std::vector<SubstepManifold>& manifolds);
+
+// The gap of a point now: its gap at the start of the step plus the relative move of the
+// two blocks at the point along the normal.
+inline double current_gap(const SubstepManifold& m, const SubstepPoint& p, const std::vector<Vec3>& step_moves) {
+  return p.separation + m.normal.dot(velocity_at(step_moves[m.block_b], p.rb) - velocity_at(step_moves[m.block_a], p.ra));
+}
 
 }  // namespace ddafit

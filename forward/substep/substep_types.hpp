@@ -44,11 +44,11 @@ struct SubstepPoint {
 
   Vec2 anchor = Vec2::Zero();  // the point at the start of the step, world
   double separation = 0.0;     // at the start of the step, m (< 0: penetration)
-  // Jacobians of the normal and tangential relative velocity, v_rel = jb . v_b - ja . v_a,
-  // and the velocity changes W j of a unit impulse (W: the block's effective inverse mass).
-  Vec6 ja_n = Vec6::Zero(), jb_n = Vec6::Zero(), ja_t = Vec6::Zero(), jb_t = Vec6::Zero();
-  Vec6 wa_n = Vec6::Zero(), wb_n = Vec6::Zero(), wa_t = Vec6::Zero(), wb_t = Vec6::Zero();
-  double normal_mass = 0.0;   // 1 / (j W j) along the normal
+  // The point about each block's centroid at the start of the step. The relative
+  // velocity is v_rel = (v_b + w_b x r_b) - (v_a + w_a x r_a): the rigid-body rows of
+  // T(p) (Shi 1993 eq. 2.2), the strain rows being the blocks' stress (block_stress.hpp).
+  Vec2 ra = Vec2::Zero(), rb = Vec2::Zero();
+  double normal_mass = 0.0;   // 1 / (J W J^T) along the normal, kg/m
   double tangent_mass = 0.0;  // along the tangent
   double friction = 0.0;      // tan(phi) at the current slip (seed Eq. 2-3)
   double step_normal_impulse = 0.0;   // N s/m, summed over the substeps of this step
@@ -67,14 +67,23 @@ struct SubstepManifold {
   SubstepPoint points[2];
 };
 
-// A block's response to a contact impulse: its velocities change by W J^T P, W the
-// inverse of the rigid-body rows of the DDA mass matrix (translation and rotation about
-// the centroid). The strain unknowns carry no inertia in the substep solver: a block's
-// strain follows from the mean stress its contacts put on it over each step
-// (forward/substep/block_stress.hpp). A fixed block has W = 0.
+// A block's response to a contact impulse P at r: its velocity changes by P / m and its
+// spin by (r x P) / I, with m and I the rigid-body rows of the DDA mass matrix
+// (translation and rotation about the centroid; they are diagonal there,
+// forward/mass_matrix.hpp). The strain unknowns carry no inertia in the substep solver:
+// a block's strain follows from the mean stress its contacts put on it over each step
+// (forward/substep/block_stress.hpp). A fixed block has zero inverses.
 struct BlockMass {
-  Mat6 inverse = Mat6::Zero();  // W, non-zero in the rigid-body rows only
+  double inverse_mass = 0.0;     // 1 / m, m/kg (per metre of thickness)
+  double inverse_inertia = 0.0;  // 1 / I about the centroid
   bool moves = false;
 };
+
+inline double cross2(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
+
+// Velocity of the material point at r (about the centroid) of a block moving with
+// q = (vx, vy, w), the rigid-body part of its six rates; also its displacement for a
+// small move q = (dx, dy, dtheta).
+inline Vec2 velocity_at(const Vec3& q, const Vec2& r) { return Vec2(q[0] - q[2] * r.y(), q[1] + q[2] * r.x()); }
 
 }  // namespace ddafit
