@@ -11,14 +11,14 @@
 
 namespace ddafit {
 
-// A soft constraint as a spring of `hertz` and damping ratio `zeta` resolved over a
-// substep h (Box2D's b2Softness): with w = 2 pi hertz, a1 = 2 zeta + h w, a2 = h w a1,
-// the push-out velocity is bias_rate x overlap, and the impulse is scaled by mass_scale
-// and relaxed towards zero by impulse_scale.
+// The push-out of an overlap as a spring of `hertz` and damping ratio `zeta` resolved
+// over a substep h (after Box2D's b2Softness): with w = 2 pi hertz, a1 = 2 zeta + h w,
+// a2 = h w a1, the push-out velocity is bias_rate x overlap and the impulse that makes it
+// is scaled by mass_scale. (Box2D also relaxes the impulse towards zero; ddafit does not,
+// solve_contacts.cpp says why.)
 struct ContactSoftness {
-  double bias_rate = 0.0;      // 1/s: w / a1
-  double mass_scale = 1.0;     // a2 / (1 + a2)
-  double impulse_scale = 0.0;  // 1 / (1 + a2)
+  double bias_rate = 0.0;   // 1/s: w / a1
+  double mass_scale = 1.0;  // a2 / (1 + a2)
 };
 ContactSoftness make_softness(double hertz, double zeta, double h);
 
