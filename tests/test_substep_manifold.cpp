@@ -1,0 +1,363 @@
+// Geometry of the substep contact solver: the contact manifold between two convex pieces
+// (the convex decomposition: test_substep_geometry.cpp).
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <random>
+#include <vector>
+
+#include "forward/geometry.hpp"
+#include "forward/substep/manifold.hpp"
+
+namespace ddafit {
+namespace {
+
+const Vec2 kFar(1000.0, 500.0);  // Vajont-like coordinates: precision must not suffer
+
+std::vector<Vec2> box(double x0, double y0, double x1, double y1) {
+  return {kFar + Vec2(x0, y0), kFar + Vec2(x1, y0), kFar + Vec2(x1, y1), kFar + Vec2(x0, y1)};
+}
+
+// Square of side 2h centred at c (relative to kFar), rotated by `degrees`.
+std::vector<Vec2> square(const Vec2& c, double h, double degrees) {
+  const double t = degrees * M_PI / 180.0;
+  const Eigen::Matrix2d r{{std::cos(t), -std::sin(t)}, {std::sin(t), std::cos(t)}};
+  std::vector<Vec2> p;
+  for (const Vec2& v : {Vec2(-h, -h), Vec2(h, -h), Vec2(h, h), Vec2(-h, h)}) p.push_back(kFar + c + r * v);
+  return p;
+}
+
+// Blocks of ~1 m at ~1 km: positions are good to ~1e-13 m; 1e-9 m leaves room.
+constexpr double kLength = 1e-9;
+constexpr double kMaxDistance = 0.01, kSlop = 1e-4;
+
+Manifold collide(const std::vector<Vec2>& a, const std::vector<Vec2>& b) {
+  return collide_polygons(a, b, kMaxDistance, kSlop);
+}
+
+// Signed distance of q from the line of the edge of p whose outward normal is n, or NaN.
+double distance_from_face(const std::vector<Vec2>& p, const Vec2& n, const Vec2& q) {
+  for (size_t k = 0; k < p.size(); ++k) {
+    const Vec2 e = p[(k + 1) % p.size()] - p[k];
+    if ((Vec2(e.y(), -e.x()).normalized() - n).norm() < 1e-9) return (q - p[k]).dot(n);
+  }
+  return std::nan("");
+}
+
+// What every manifold point must satisfy: the two ends of the point's normal segment lie
+// on a's and b's boundaries, the owner's vertex is one of them, and for a face contact
+// the separation is the incident end's signed distance from the reference face.
+void expect_consistent(const std::vector<Vec2>& a, const std::vector<Vec2>& b, const Manifold& m) {
+  ASSERT_GT(m.point_count, 0);
+  EXPECT_NEAR(m.normal.norm(), 1.0, 1e-12);
+  for (int k = 0; k < m.point_count; ++k) {
+    const ManifoldPoint& p = m.points[k];
+    const Vec2 on_a = p.point - 0.5 * p.separation * m.normal;
+    const Vec2 on_b = p.point + 0.5 * p.separation * m.normal;
+    EXPECT_LT(distance_to_boundary(on_a, a), kLength);
+    EXPECT_LT(distance_to_boundary(on_b, b), kLength);
+    ASSERT_TRUE(p.owner == 0 || p.owner == 1);
+    const Vec2 vertex = (p.owner == 0 ? a : b)[static_cast<size_t>(p.vertex)];
+    EXPECT_LT((vertex - (p.owner == 0 ? on_a : on_b)).norm(), kLength);
+    if (m.point_count == 1 && (p.id & kManifoldIdVertexVertex)) continue;  // no face
+    const double from_a = distance_from_face(a, m.normal, on_b);
+    const double from_b = distance_from_face(b, -m.normal, on_a);
+    ASSERT_TRUE(!std::isnan(from_a) || !std::isnan(from_b));
+    EXPECT_NEAR(std::isnan(from_a) ? from_b : from_a, p.separation, kLength);
+  }
+}
+
+std::vector<double> separations(const Manifold& m) {
+  std::vector<double> s;
+  for (int k = 0; k < m.point_count; ++k) s.push_back(m.points[k].separation);
+  std::sort(s.begin(), s.end());
+  return s;
+}
+
+std::vector<std::uint32_t> ids(const Manifold& m) {
+  std::vector<std::uint32_t> s;
+  for (int k = 0; k < m.point_count; ++k) s.push_back(m.points[k].id);
+  std::sort(s.begin(), s.end());
+  return s;
+}
+
+TEST(SubstepManifold, BoxRestingOnBox) {
+  const auto a = box(0, 0, 4, 1), b = box(1, 0.99, 3, 1.99);  // 1 cm overlap
+  const Manifold m = collide(a, b);
+  ASSERT_EQ(m.point_count, 2);
+  EXPECT_LT((m.normal - Vec2(0, 1)).norm(), 1e-12);
+  for (const ManifoldPoint& p : m.points) {
+    EXPECT_NEAR(p.separation, -0.01, kLength);
+    EXPECT_EQ(p.owner, 1);  // b's bottom corners press on a's top
+    EXPECT_NEAR(p.point.y() - kFar.y(), 0.995, kLength);
+  }
+  EXPECT_NE(m.points[0].id, m.points[1].id);
+  expect_consistent(a, b, m);
+}
+
+TEST(SubstepManifold, BoxesSlightlyApartKeepTwoPoints) {
+  // Inside the margin, including equal widths exactly aligned, where the closest points
+  // of the two faces are not unique (two points, not the vertex-vertex single point).
+  for (double width : {2.0, 4.0}) {
+    const auto a = box(0, 0, 4, 1), b = box(4 - width, 1.002, 4, 2.002);
+    const Manifold m = collide(a, b);
+    ASSERT_EQ(m.point_count, 2);
+    EXPECT_LT((m.normal - Vec2(0, 1)).norm(), 1e-12);
+    for (const ManifoldPoint& p : m.points) EXPECT_NEAR(p.separation, 0.002, kLength);
+    expect_consistent(a, b, m);
+  }
+}
+
+TEST(SubstepManifold, TiltedBoxAboveFaceIsAFaceContact) {
+  // b turned 15 degrees, its lowest corner 2 mm above the middle of a's top: the corner
+  // faces a face, not a corner, so the normal stays a's face normal.
+  const double t = 15.0 * M_PI / 180.0, reach = 0.5 * (std::cos(t) + std::sin(t));
+  const auto a = box(0, 0, 4, 1), b = square(Vec2(2, 1.002 + reach), 0.5, 15.0);
+  const Manifold m = collide(a, b);
+  ASSERT_EQ(m.point_count, 1);  // b's other bottom corner is 0.26 m up, past the margin
+  EXPECT_LT((m.normal - Vec2(0, 1)).norm(), 1e-12);
+  EXPECT_NEAR(m.points[0].separation, 0.002, kLength);
+  EXPECT_FALSE(m.points[0].id & kManifoldIdVertexVertex);
+  EXPECT_EQ(m.points[0].owner, 1);
+  expect_consistent(a, b, m);
+}
+
+TEST(SubstepManifold, BoxesBeyondMarginHaveNoPoints) {
+  EXPECT_EQ(collide(box(0, 0, 4, 1), box(1, 1.02, 3, 2.02)).point_count, 0);
+}
+
+TEST(SubstepManifold, CornerToCornerHasOnePointAlongTheCorners) {
+  // Two diamonds tip to tip 1 mm apart: the faces' normal would be (1, 1)/sqrt 2, but the
+  // contact is between the tips and must push along the line joining them.
+  const double gap = 1e-3;
+  const auto a = square(Vec2(0, 0), 1.0 / std::sqrt(2.0), 45.0);
+  const auto b = square(Vec2(2 + gap, 0), 1.0 / std::sqrt(2.0), 45.0);
+  const Manifold m = collide(a, b);
+  ASSERT_EQ(m.point_count, 1);
+  EXPECT_LT((m.normal - Vec2(1, 0)).norm(), 1e-9);
+  EXPECT_NEAR(m.points[0].separation, gap, kLength);
+  EXPECT_LT((m.points[0].point - kFar - Vec2(1 + 0.5 * gap, 0)).norm(), kLength);
+  expect_consistent(a, b, m);
+  // The same pair seen from b: the normal reverses (the other end of each face is nearest).
+  const Manifold r = collide(b, a);
+  ASSERT_EQ(r.point_count, 1);
+  EXPECT_LT((r.normal - Vec2(-1, 0)).norm(), 1e-9);
+  EXPECT_LT((r.points[0].point - m.points[0].point).norm(), kLength);
+  // Axis-aligned boxes diagonal to each other, both ways round: normal along the diagonal.
+  for (int sign : {1, -1}) {
+    const double o = sign > 0 ? 0.0 : -2.0 - 2.0 * gap;  // upper at (-1 - gap, -gap)^2
+    const auto lower = box(0, 0, 1, 1), upper = box(o + 1 + gap, o + 1 + gap, o + 2 + gap, o + 2 + gap);
+    const Manifold d = collide(lower, upper);
+    ASSERT_EQ(d.point_count, 1);
+    EXPECT_LT((d.normal - sign * Vec2(1, 1).normalized()).norm(), 1e-9);
+    EXPECT_NEAR(d.points[0].separation, gap * std::sqrt(2.0), kLength);
+    const Vec2 mid = sign > 0 ? Vec2(1 + 0.5 * gap, 1 + 0.5 * gap) : Vec2(-0.5 * gap, -0.5 * gap);
+    EXPECT_LT((d.points[0].point - kFar - mid).norm(), kLength);
+    expect_consistent(lower, upper, d);
+  }
+}
+
+TEST(SubstepManifold, CornerToCornerOfNonParallelFaces) {
+  // b turned 20 degrees with a corner 2 mm from a corner of a, in the direction 55
+  // degrees from a's corner (outside both corners' faces): one point, normal along that
+  // line. The scene is turned by k x 90 degrees about a's centre to visit every corner,
+  // and mirrored (35 degrees, b turned -20) so that either end of each face is nearest.
+  const double gap = 2e-3;
+  for (int k = 0; k < 8; ++k) {
+    SCOPED_TRACE(k);
+    const double mirror = k < 4 ? 1.0 : -1.0;
+    const double t = (45.0 + 10.0 * mirror + 90.0 * k) * M_PI / 180.0;
+    const double r = (20.0 * mirror + 90.0 * k) * M_PI / 180.0;
+    const Vec2 dir(std::cos(t), std::sin(t));
+    const Vec2 a_corner = Eigen::Rotation2Dd(0.5 * M_PI * k) * Vec2(1, 1);
+    const Vec2 b_corner = a_corner + gap * dir;
+    const Vec2 to_centre = 0.5 * Vec2(std::cos(r) - std::sin(r), std::sin(r) + std::cos(r));
+    const auto a = square(Vec2(0, 0), 1.0, 0.0), b = square(b_corner + to_centre, 0.5, r * 180.0 / M_PI);
+    const Manifold m = collide(a, b);
+    ASSERT_EQ(m.point_count, 1);
+    EXPECT_LT((m.normal - dir).norm(), 1e-9);
+    EXPECT_NEAR(m.points[0].separation, gap, kLength);
+    EXPECT_TRUE(m.points[0].id & kManifoldIdVertexVertex);
+    EXPECT_LT((m.points[0].point - kFar - 0.5 * (a_corner + b_corner)).norm(), kLength);
+    expect_consistent(a, b, m);
+  }
+}
+
+TEST(SubstepManifold, OverlappingCornersClipAtBothEnds) {
+  // b's lower-left corner 1 mm into a's upper-right corner in x and y. The axes tie, a's
+  // right face is the reference: one point is b's corner, the other is where b's left
+  // face crosses the top end of a's right face -- owned by a's corner there.
+  const double d = 1e-3;
+  const auto a = box(0, 0, 1, 1), b = box(1 - d, 1 - d, 2 - d, 2 - d);
+  const Manifold m = collide(a, b);
+  ASSERT_EQ(m.point_count, 2);
+  expect_consistent(a, b, m);
+  std::vector<std::pair<int, int>> owners;
+  for (const ManifoldPoint& p : m.points) {
+    EXPECT_NEAR(p.separation, -d, kLength);
+    owners.emplace_back(p.owner, p.vertex);
+  }
+  std::sort(owners.begin(), owners.end());
+  EXPECT_EQ(owners, (std::vector<std::pair<int, int>>{{0, 2}, {1, 0}}));
+}
+
+TEST(SubstepManifold, TinyTiltedEdgeDoesNotHideContact) {
+  // A vertex 1e-10 m inside a's top-right corner (a straight vertex for convex_pieces)
+  // makes a tiny edge whose normal points up-left. Taken at face value that axis would
+  // "separate" b, resting on a, by 0.35 m; the contact must still be found.
+  std::vector<Vec2> a = box(0, 0, 2, 1);
+  a.insert(a.begin() + 3, kFar + Vec2(2 - 1e-10, 1 - 1e-10));
+  const auto b = box(0.5, 0.99, 1.5, 1.99);
+  const Manifold m = collide(a, b);
+  ASSERT_EQ(m.point_count, 2);
+  EXPECT_LT((m.normal - Vec2(0, 1)).norm(), 1e-9);
+  for (const ManifoldPoint& p : m.points) EXPECT_NEAR(p.separation, -0.01, 1e-9);
+}
+
+TEST(SubstepManifold, RotatedBoxAtCorner) {
+  // b (side 1) sinks 1 cm into a's top-right corner region, at three angles; with a and
+  // b swapped the normal must reverse and the separations stay.
+  const auto a = box(0, 0, 2, 1);
+  for (double degrees : {15.0, 45.0, 90.0}) {
+    SCOPED_TRACE(degrees);
+    const double t = degrees * M_PI / 180.0, reach = 0.5 * (std::abs(std::cos(t)) + std::abs(std::sin(t)));
+    const auto b = square(Vec2(1.9, 1.0 + reach - 0.01), 0.5, degrees);
+    const Manifold m = collide(a, b);
+    expect_consistent(a, b, m);
+    EXPECT_LE(m.points[0].separation, 0.0);
+    const Manifold s = collide(b, a);
+    expect_consistent(b, a, s);
+    EXPECT_LT((s.normal + m.normal).norm(), 1e-12);
+    const auto sm = separations(m), ss = separations(s);
+    ASSERT_EQ(sm.size(), ss.size());
+    for (size_t k = 0; k < sm.size(); ++k) EXPECT_NEAR(sm[k], ss[k], kLength);
+  }
+}
+
+TEST(SubstepManifold, CornerOfAIntoFaceOfB) {
+  // a's top-right corner 1 cm inside the lower-left face of b (turned 40 degrees, beside
+  // a): b's face is the reference, so the normal is minus its outward normal, and the
+  // one point is a's corner (owner 0, vertex 2).
+  const auto a = box(0, 0, 2, 1);
+  const double t = 40.0 * M_PI / 180.0;
+  const auto b = square(Vec2(2, 1) + 0.49 * Vec2(std::cos(t), std::sin(t)), 0.5, 40.0);
+  const Manifold m = collide(a, b);
+  ASSERT_EQ(m.point_count, 1);
+  EXPECT_LT((m.normal - Vec2(std::cos(t), std::sin(t))).norm(), 1e-12);
+  EXPECT_NEAR(m.points[0].separation, -0.01, kLength);
+  EXPECT_EQ(m.points[0].owner, 0);
+  EXPECT_EQ(m.points[0].vertex, 2);
+  expect_consistent(a, b, m);
+}
+
+TEST(SubstepManifold, IdsStayWhileTheSameFeaturesTouch) {
+  // Move and turn b a little (0.1 mm, 1e-4 rad): same features, so same ids.
+  const auto a = box(0, 0, 2, 1);
+  for (double degrees : {15.0, 90.0}) {
+    SCOPED_TRACE(degrees);
+    const double t = degrees * M_PI / 180.0, reach = 0.5 * (std::abs(std::cos(t)) + std::abs(std::sin(t)));
+    const Vec2 c(1.9, 1.0 + reach - 0.005);
+    const Manifold m0 = collide(a, square(c, 0.5, degrees));
+    const Manifold m1 = collide(a, square(c + Vec2(1e-4, -2e-4), 0.5, degrees + 0.0057));
+    ASSERT_GT(m0.point_count, 0);
+    EXPECT_EQ(ids(m0), ids(m1));
+  }
+  const double t = 40.0 * M_PI / 180.0;
+  const Vec2 c(Vec2(2, 1) + 0.49 * Vec2(std::cos(t), std::sin(t)));
+  EXPECT_EQ(ids(collide(a, square(c, 0.5, 40.0))),
+            ids(collide(a, square(c + Vec2(-1e-4, 1e-4), 0.5, 40.0057))));
+  const Manifold f0 = collide(a, box(0.5, 0.99, 1.5, 1.99));
+  const Manifold f1 = collide(a, box(0.5001, 0.9901, 1.5001, 1.9901));
+  EXPECT_EQ(ids(f0), ids(f1));
+}
+
+TEST(SubstepManifold, StraightVertexDoesNotHalveTheFace) {
+  // a's top side has a vertex in its middle; a box spanning it must be held at both ends.
+  const std::vector<Vec2> a{kFar, kFar + Vec2(4, 0), kFar + Vec2(4, 1), kFar + Vec2(2, 1), kFar + Vec2(0, 1)};
+  const auto b = box(0.5, 0.99, 3.5, 1.99);
+  const Manifold m = collide(a, b);
+  ASSERT_EQ(m.point_count, 2);
+  std::vector<double> x{m.points[0].point.x() - kFar.x(), m.points[1].point.x() - kFar.x()};
+  std::sort(x.begin(), x.end());
+  EXPECT_NEAR(x[0], 0.5, kLength);
+  EXPECT_NEAR(x[1], 3.5, kLength);
+}
+
+TEST(SubstepManifold, NearlyParallelFacesApartKeepTwoPoints) {
+  // b turned by 1e-7 rad above a, 2 mm apart: still a face contact, not a corner one.
+  const auto a = box(0, 0, 2, 1);
+  const auto b = square(Vec2(1.0, 1.502), 0.5, 1e-7 * 180.0 / M_PI);
+  const Manifold m = collide(a, b);
+  ASSERT_EQ(m.point_count, 2);
+  for (const ManifoldPoint& p : m.points) EXPECT_NEAR(p.separation, 0.002, 1e-6);
+  expect_consistent(a, b, m);
+}
+
+// Convex hull (counter-clockwise, no collinear points) by the monotone chain.
+std::vector<Vec2> hull(std::vector<Vec2> p) {
+  std::sort(p.begin(), p.end(), [](const Vec2& u, const Vec2& v) {
+    return u.x() < v.x() || (u.x() == v.x() && u.y() < v.y());
+  });
+  std::vector<Vec2> h(2 * p.size());
+  size_t k = 0;
+  for (size_t i = 0; i < p.size(); ++i) {
+    while (k >= 2 && cross(h[k - 2], h[k - 1], p[i]) <= 0) --k;
+    h[k++] = p[i];
+  }
+  for (size_t i = p.size() - 1, lower = k + 1; i-- > 0;) {
+    while (k >= lower && cross(h[k - 2], h[k - 1], p[i]) <= 0) --k;
+    h[k++] = p[i];
+  }
+  h.resize(k - 1);
+  return h;
+}
+
+double gap_between(const std::vector<Vec2>& a, const std::vector<Vec2>& b) {
+  double d = std::numeric_limits<double>::infinity();
+  for (const Vec2& p : a) d = std::min(d, distance_to_boundary(p, b));
+  for (const Vec2& p : b) d = std::min(d, distance_to_boundary(p, a));
+  return d;
+}
+
+TEST(SubstepManifold, RandomPairsMissNoContact) {
+  // Hulls of 3-8 random points, ~1 m across at ~1.5 km, in random relative positions:
+  // overlapping or closer than the margin must give points, farther must give none,
+  // and every point must sit between the two boundaries.
+  std::mt19937 rng(99);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  const Vec2 far(1500.0, 800.0);
+  const double margin = 0.05;
+  int touching = 0;
+  for (int trial = 0; trial < 5000; ++trial) {
+    std::vector<Vec2> pa, pb;
+    const Vec2 offset(2.0 * u(rng), 2.0 * u(rng));
+    for (int k = 0, n = 3 + trial % 6; k < n; ++k) pa.push_back(far + Vec2(u(rng), u(rng)));
+    for (int k = 0, n = 3 + trial % 5; k < n; ++k) pb.push_back(far + offset + Vec2(u(rng), u(rng)));
+    const auto a = hull(pa), b = hull(pb);
+    if (a.size() < 3 || b.size() < 3) continue;
+    const bool overlap = polygons_overlap(a, b, 1e-6);
+    const double gap = overlap ? 0.0 : gap_between(a, b);
+    const Manifold m = collide_polygons(a, b, margin, kSlop);
+    SCOPED_TRACE(trial);
+    // 0.1 % either side of the margin: the two sides of the comparison see round-off.
+    if (overlap || gap < 0.999 * margin) {
+      ASSERT_GT(m.point_count, 0);
+      ++touching;
+    }
+    if (!overlap && gap > 1.001 * margin) {
+      EXPECT_EQ(m.point_count, 0);
+    }
+    for (int k = 0; k < m.point_count; ++k) {
+      const ManifoldPoint& p = m.points[k];
+      EXPECT_LT(distance_to_boundary(p.point - 0.5 * p.separation * m.normal, a), kLength);
+      EXPECT_LT(distance_to_boundary(p.point + 0.5 * p.separation * m.normal, b), kLength);
+    }
+  }
+  EXPECT_GT(touching, 1000);  // the test did look at contacts
+}
+
+}  // namespace
+}  // namespace ddafit
