@@ -2,6 +2,7 @@
 #include "forward/substep/parallel.hpp"
 
 #include <Eigen/LU>
+#include <algorithm>
 
 #include "forward/step/update_blocks.hpp"
 
@@ -13,8 +14,9 @@ constexpr double kMaxStrainPerStep = 1e-5;
 }  // namespace
 
 void update_block_stress(BlockSystem& s, const std::vector<SubstepManifold>& manifolds,
-                         const std::vector<char>& deformable, double duration, bool last_substep,
-                         double relaxation, bool measured) {
+                         const std::vector<char>& deformable, double duration, double relaxation,
+                         bool measured) {
+  if (std::find(deformable.begin(), deformable.end(), char{1}) == deformable.end()) return;
   // Sum of the contact forces' first moments per block: the strain rows of T(p)^T f,
   // (X f_x, Y f_y, (Y f_x + X f_y) / 2) with (X, Y) the point about the centroid.
   const auto first_moment = [](const Vec2& r, const Vec2& f) {
@@ -24,9 +26,7 @@ void update_block_stress(BlockSystem& s, const std::vector<SubstepManifold>& man
   for (const SubstepManifold& m : manifolds) {
     for (int q = 0; q < m.point_count; ++q) {
       const SubstepPoint& p = m.points[q];
-      const double pn = last_substep ? p.normal_impulse : p.step_normal_impulse;
-      const double pt = last_substep ? p.tangent_impulse : p.step_tangent_impulse;
-      const Vec2 impulse = pn * m.normal + pt * m.tangent;  // on block b; -impulse on a
+      const Vec2 impulse = p.step_normal_impulse * m.normal + p.step_tangent_impulse * m.tangent;  // on block b; -impulse on a
       moment[m.block_b] += first_moment(p.rb, impulse);
       moment[m.block_a] -= first_moment(p.ra, impulse);
     }

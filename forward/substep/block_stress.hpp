@@ -21,13 +21,13 @@
 
 namespace ddafit {
 
-// `deformable[m]`: material m keeps its strain unknowns (not rigid). `last_substep`:
-// take each point's impulse of the last substep over `duration` (the quiet start) instead
-// of the step's sum.
+// `deformable[m]`: material m keeps its strain unknowns (not rigid); with none (the
+// default, control.rigid_blocks) nothing is done. The contact forces are the step's
+// impulses over `duration`.
 // `relaxation` in (0, 1]: the share of the way to the contacts' mean stress taken now.
 // `measured` false (the quiet start): the measurement points' origins move with the strain.
 void update_block_stress(BlockSystem& system, const std::vector<SubstepManifold>& manifolds,
-                         const std::vector<char>& deformable, double duration, bool last_substep,
-                         double relaxation, bool measured);
+                         const std::vector<char>& deformable, double duration, double relaxation,
+                         bool measured);
 
 }  // namespace ddafit

@@ -147,7 +147,7 @@ void advance(BlockSystem& s, SubstepWork& w, const SimulationOptions& o, double 
   for (int k = 0; k < o.substeps; ++k) run_one_substep(s, w, sweep, gravity, profile);
   ScopedTimer timer(profile.update);
   move_blocks(s, w.state, measured);
-  update_block_stress(s, w.manifolds, w.deformable, dt, false, kStressRelaxation, measured);
+  update_block_stress(s, w.manifolds, w.deformable, dt, kStressRelaxation, measured);
 }
 
 // Largest change of any normal impulse since `last` (updated), relative to the largest.
