@@ -69,10 +69,12 @@ std::string collide(const BlockSystem& s, const SubstepShapes& shapes, const std
     const int na = gather(s, shapes, a, corners_a);
     const int nb = gather(s, shapes, b, corners_b);
     const std::span<const char> solid(shapes.solid);
+    const double reach = settings.extra_reach.empty() ? 0.0
+                         : settings.extra_reach[shapes.pieces[a].block] + settings.extra_reach[shapes.pieces[b].block];
     const Manifold m = collide_polygons(std::span<const Vec2>(corners_a, na), std::span<const Vec2>(corners_b, nb),
-                                        settings.margin, settings.linear_slop,
+                                        settings.margin + reach, settings.linear_slop,
                                         solid.subspan(shapes.pieces[a].first, na),
-                                        solid.subspan(shapes.pieces[b].first, nb));
+                                        solid.subspan(shapes.pieces[b].first, nb), settings.margin);
     if (m.point_count == 0) continue;
     SubstepManifold& out = found[k];
     touching[k] = 1;

@@ -4,6 +4,7 @@
 // (forward/substep/manifold.hpp). Points keep their impulses and slip from the last step.
 #pragma once
 
+#include <span>
 #include <string>
 #include <utility>
 #include <vector>
@@ -15,6 +16,10 @@ namespace ddafit {
 
 struct CollideSettings {
   double margin = 0.0;       // m: points are kept while their gap is below this (speculative)
+  // m, per block (empty: none): a block moving further in the step than the margin covers
+  // (a block in flight) widens the margin of its pairs by this much, so it cannot pass
+  // through a neighbour unseen; overlaps deeper than `margin` alone are still not contacts.
+  std::span<const double> extra_reach;
   double linear_slop = 0.0;  // m: tolerance of the separating-axis choice
   bool first_step = false;   // bonds (cohesion, tension) form only between blocks touching at t = 0
 };

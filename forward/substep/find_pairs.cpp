@@ -29,7 +29,8 @@ std::string build_shapes(const BlockSystem& s, SubstepShapes& shapes) {
   return {};
 }
 
-std::vector<std::pair<int, int>> find_pairs(const BlockSystem& s, const SubstepShapes& shapes, double margin) {
+std::vector<std::pair<int, int>> find_pairs(const BlockSystem& s, const SubstepShapes& shapes, double margin,
+                                            std::span<const double> extra_reach) {
   struct Box {
     double lo_x, hi_x, lo_y, hi_y;
     int piece;
@@ -45,6 +46,13 @@ std::vector<std::pair<int, int>> find_pairs(const BlockSystem& s, const SubstepS
       box.hi_x = std::max(box.hi_x, v.x());
       box.lo_y = std::min(box.lo_y, v.y());
       box.hi_y = std::max(box.hi_y, v.y());
+    }
+    if (!extra_reach.empty()) {
+      const double grow = extra_reach[piece.block];
+      box.lo_x -= grow;
+      box.hi_x += grow;
+      box.lo_y -= grow;
+      box.hi_y += grow;
     }
     boxes.push_back(box);
   }

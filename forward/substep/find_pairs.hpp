@@ -2,6 +2,8 @@
 // blocks are close enough to touch within the step.
 #pragma once
 
+#include <span>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -15,9 +17,10 @@ namespace ddafit {
 std::string build_shapes(const BlockSystem& system, SubstepShapes& shapes);
 
 // Pairs (a, b), a < b, of pieces of different blocks, not both fixed, whose bounding boxes
-// grown by `margin` overlap: sort and sweep along x, O(n log n) in the pieces. The pairs
-// come out sorted, so the contacts built from them are in the same order on every run.
+// grown by `margin`, and each by its block's `extra_reach` (m, per block; empty for none),
+// overlap: sort and sweep along x, O(n log n) in the pieces. The pairs come out sorted, so
+// the contacts built from them are in the same order on every run.
 std::vector<std::pair<int, int>> find_pairs(const BlockSystem& system, const SubstepShapes& shapes,
-                                            double margin);
+                                            double margin, std::span<const double> extra_reach = {});
 
 }  // namespace ddafit

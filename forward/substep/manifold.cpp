@@ -117,8 +117,10 @@ Ends closest_ends(const Vec2& p1, const Vec2& q1, const Vec2& p2, const Vec2& q2
 }  // namespace
 
 Manifold collide_polygons(std::span<const Vec2> a, std::span<const Vec2> b, double max_distance,
-                          double linear_slop, std::span<const char> a_solid, std::span<const char> b_solid) {
+                          double linear_slop, std::span<const char> a_solid, std::span<const char> b_solid,
+                          double max_depth) {
   Manifold m;
+  if (max_depth < 0.0) max_depth = max_distance;
   if (a.size() < 3 || b.size() < 3) return m;
   const Vec2 origin = a[0];
   const Shape sa{a, origin, static_cast<int>(a.size())}, sb{b, origin, static_cast<int>(b.size())};
@@ -221,7 +223,7 @@ Manifold collide_polygons(std::span<const Vec2> a, std::span<const Vec2> b, doub
     const double separation = (c[k].at - v11).dot(normal);
     // Deeper than the margin is not a contact a step can make: with cuts (solid edges
     // only as reference faces) it is a corner read across a cut, inside the block.
-    if (!(separation < max_distance) || (has_cuts && !(separation > -max_distance))) continue;
+    if (!(separation < max_distance) || (has_cuts && !(separation > -max_depth))) continue;
     m.points[m.point_count++] = {origin + c[k].at - 0.5 * separation * normal, separation,
                                  manifold_id(c[k].owner, c[k].vertex, c[k].other, false),
                                  c[k].owner, c[k].vertex};

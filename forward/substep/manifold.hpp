@@ -38,7 +38,8 @@ constexpr std::uint32_t manifold_id(int owner, int vertex, int other_feature, bo
 }
 
 // Convex counter-clockwise polygons a and b. Points are kept while their separation is
-// below max_distance (the speculative margin, > 0). `linear_slop` (m, small, e.g. 1e-4 x
+// below max_distance (the speculative margin, > 0); where a piece has cuts, only while their
+// overlap is below max_depth (default: max_distance; see "Solid edges"). `linear_slop` (m, small, e.g. 1e-4 x
 // block size) is the tolerance of the separating-axis comparisons: b becomes the
 // reference polygon only when its best axis separates by more than a's by 0.1 x linear_slop
 // (a bias against flipping between equal axes). When the polygons are apart by more than
@@ -64,6 +65,6 @@ constexpr std::uint32_t manifold_id(int owner, int vertex, int other_feature, bo
 // block (one read 18 m "deep" on Vajont section I).
 Manifold collide_polygons(std::span<const Vec2> a, std::span<const Vec2> b, double max_distance,
                           double linear_slop, std::span<const char> a_solid = {},
-                          std::span<const char> b_solid = {});
+                          std::span<const char> b_solid = {}, double max_depth = -1.0);
 
 }  // namespace ddafit
