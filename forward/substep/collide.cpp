@@ -58,10 +58,10 @@ void carry_over(const SubstepManifold* old, SubstepPoint& p) {
 
 std::string collide(const BlockSystem& s, const SubstepShapes& shapes, const std::vector<std::pair<int, int>>& pairs,
                     const CollideSettings& settings, std::vector<SubstepManifold>& manifolds) {
-  const std::vector<SubstepManifold> previous = std::move(manifolds);
-  std::vector<SubstepManifold> found(pairs.size());
-  std::vector<char> touching(pairs.size(), 0);
+  // Pass 1, the geometry of every pair of boxes; pass 2 builds the solver's manifolds of
+  // the pairs that touch, in place (no full manifold per pair of boxes, no copy).
   const long n = static_cast<long>(pairs.size());
+  std::vector<Manifold> geometry(pairs.size());
 #pragma omp parallel for schedule(static) if (n >= kParallelMinimum)
   for (long k = 0; k < n; ++k) {
     const auto [a, b] = pairs[k];
@@ -71,13 +71,24 @@ std::string collide(const BlockSystem& s, const SubstepShapes& shapes, const std
     const std::span<const char> solid(shapes.solid);
     const double reach = settings.extra_reach.empty() ? 0.0
                          : settings.extra_reach[shapes.pieces[a].block] + settings.extra_reach[shapes.pieces[b].block];
-    const Manifold m = collide_polygons(std::span<const Vec2>(corners_a, na), std::span<const Vec2>(corners_b, nb),
-                                        settings.margin + reach, settings.linear_slop,
-                                        solid.subspan(shapes.pieces[a].first, na),
-                                        solid.subspan(shapes.pieces[b].first, nb), settings.margin);
-    if (m.point_count == 0) continue;
-    SubstepManifold& out = found[k];
-    touching[k] = 1;
+    geometry[k] = collide_polygons(std::span<const Vec2>(corners_a, na), std::span<const Vec2>(corners_b, nb),
+                                   settings.margin + reach, settings.linear_slop,
+                                   solid.subspan(shapes.pieces[a].first, na),
+                                   solid.subspan(shapes.pieces[b].first, nb), settings.margin);
+  }
+  std::vector<int> touching;
+  for (long k = 0; k < n; ++k)
+    if (geometry[k].point_count > 0) touching.push_back(static_cast<int>(k));
+
+  const std::vector<SubstepManifold> previous = std::move(manifolds);
+  manifolds.assign(touching.size(), SubstepManifold{});
+  const long t = static_cast<long>(touching.size());
+#pragma omp parallel for schedule(static) if (t >= kParallelMinimum)
+  for (long j = 0; j < t; ++j) {
+    const int k = touching[j];
+    const auto [a, b] = pairs[k];
+    const Manifold& m = geometry[k];
+    SubstepManifold& out = manifolds[j];
     out.piece_a = a;
     out.piece_b = b;
     out.block_a = shapes.pieces[a].block;
@@ -117,17 +128,12 @@ std::string collide(const BlockSystem& s, const SubstepShapes& shapes, const std
     }
   }
   std::string problem;
-  manifolds.clear();
-  manifolds.reserve(pairs.size());
-  for (long k = 0; k < n; ++k) {
-    if (!touching[k]) continue;
-    const SubstepManifold& m = found[k];
-    if (m.interface < 0 && problem.empty()) {
-      problem = "blocks '" + s.block_names[m.block_a] + "' and '" + s.block_names[m.block_b] + "' (groups '" +
-                s.group_names[s.blocks[m.block_a].group] + "', '" + s.group_names[s.blocks[m.block_b].group] +
-                "') touch but no interface is defined for that pair: add a contacts entry or default_interface";
-    }
-    manifolds.push_back(m);
+  for (const SubstepManifold& m : manifolds) {
+    if (m.interface >= 0) continue;
+    problem = "blocks '" + s.block_names[m.block_a] + "' and '" + s.block_names[m.block_b] + "' (groups '" +
+              s.group_names[s.blocks[m.block_a].group] + "', '" + s.group_names[s.blocks[m.block_b].group] +
+              "') touch but no interface is defined for that pair: add a contacts entry or default_interface";
+    break;
   }
   return problem;
 }

@@ -23,7 +23,8 @@ struct Shape {
   std::span<const Vec2> v;
   Vec2 origin;
   int n = 0;
-  Vec2 at(int i) const { return v[static_cast<size_t>(i % n)] - origin; }
+  // i in [0, 2n): a wrap by subtraction, not %, which was a tenth of the narrow phase.
+  Vec2 at(int i) const { return v[static_cast<size_t>(i < n ? i : i - n)] - origin; }
 };
 
 struct Axis {
@@ -35,7 +36,9 @@ struct Axis {
 // edge along that normal is subtracted: it is zero for a convex polygon, but keeps the
 // value a true lower bound of the gap if a nearly straight vertex leaves a tiny edge
 // whose normal points anywhere.
-Axis best_axis(const Shape& p, const Shape& q, double tiny, std::span<const char> solid) {
+// Stops early once the separation passes `apart` (no contact then; the caller only needs
+// to know that).
+Axis best_axis(const Shape& p, const Shape& q, double tiny, std::span<const char> solid, double apart) {
   Axis best;
   for (int i = 0; i < p.n; ++i) {
     if (!solid.empty() && !solid[static_cast<size_t>(i)]) continue;
@@ -44,9 +47,11 @@ Axis best_axis(const Shape& p, const Shape& q, double tiny, std::span<const char
     if (!(length > tiny)) continue;
     const Vec2 normal = outward(edge) / length;
     double own = 0.0, gap = kInfinity;
-    for (int k = 0; k < p.n; ++k) own = std::max(own, normal.dot(p.at(k) - p0));
     for (int k = 0; k < q.n; ++k) gap = std::min(gap, normal.dot(q.at(k) - p0));
+    if (!(gap > best.separation)) continue;  // own >= 0 cannot make it better
+    for (int k = 0; k < p.n; ++k) own = std::max(own, normal.dot(p.at(k) - p0));
     if (gap - own > best.separation) best = {i, gap - own};
+    if (best.separation > apart) break;
   }
   return best;
 }
@@ -131,9 +136,11 @@ Manifold collide_polygons(std::span<const Vec2> a, std::span<const Vec2> b, doub
 
   // Separating axes of both polygons; apart along any axis by more than the margin
   // means no contact at all.
-  const Axis axis_a = best_axis(sa, sb, tiny, a_solid), axis_b = best_axis(sb, sa, tiny, b_solid);
+  const Axis axis_a = best_axis(sa, sb, tiny, a_solid, max_distance);
+  if (axis_a.separation > max_distance) return m;
+  const Axis axis_b = best_axis(sb, sa, tiny, b_solid, max_distance);
   if (axis_a.edge < 0 && axis_b.edge < 0) return m;
-  if (axis_a.separation > max_distance || axis_b.separation > max_distance) return m;
+  if (axis_b.separation > max_distance) return m;
   const auto cut_in = [](std::span<const char> solid) {
     return std::find(solid.begin(), solid.end(), char{0}) != solid.end();
   };
