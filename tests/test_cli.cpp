@@ -1,6 +1,7 @@
 // The command-line contract: output files, exit codes and one-line errors.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -168,6 +169,57 @@ TEST(Cli, VerifyPrintsRowsAndPasses) {
   const CommandResult r = ddafit("verify --only thrown", "verify_thrown");
   EXPECT_EQ(r.code, 0) << r.out << r.err;
   EXPECT_NE(r.out.find("1 passed, 0 failed"), std::string::npos) << r.out;
+}
+
+TEST(Cli, AnimateDrawsEverySnapshotAndTheChosenTimes) {
+  // Contract of `ddafit animate`: one PNG per VTK snapshot, the chosen times as their own
+  // PNGs, and an animated GIF. The incline for 1 s with a snapshot every 0.25 s gives 5
+  // snapshots (t = 0, 0.25, ..., 1); PNG and GIF files are checked by their signatures.
+  const fs::path run = fs::path(DDAFIT_TEST_TMP) / "animate" / "run";
+  fs::remove_all(run);
+  const CommandResult sim = ddafit("simulate " + kIncline + " --set time.duration=1 --vtk-interval 0.25 --quiet --out " +
+                                       run.string(), "animate_sim");
+  ASSERT_EQ(sim.code, 0) << sim.err;
+  const CommandResult r = ddafit("animate " + run.string() + " --times 0.5,1", "animate");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const fs::path out = run / "animation";
+  for (int k = 0; k < 5; ++k) {
+    const fs::path frame = out / ("frame_0000" + std::to_string(k) + ".png");
+    EXPECT_EQ(slurp(frame).substr(1, 3), "PNG") << frame;
+  }
+  EXPECT_FALSE(fs::exists(out / "frame_00005.png")) << "5 snapshots, 5 frames";
+  EXPECT_EQ(slurp(out / "speed_t000.5s.png").substr(1, 3), "PNG");
+  EXPECT_EQ(slurp(out / "speed_t001.0s.png").substr(1, 3), "PNG");
+  EXPECT_EQ(slurp(out / "animation.gif").substr(0, 6), "GIF89a");
+}
+
+TEST(Cli, AnimateRefusesARunWithoutSnapshotsOrABrokenOne) {
+  // No vtk folder: exit 2, saying how to make one.
+  const fs::path empty = fs::path(DDAFIT_TEST_TMP) / "animate_none";
+  fs::create_directories(empty);
+  const CommandResult none = ddafit("animate " + empty.string(), "animate_none");
+  EXPECT_EQ(none.code, 2);
+  EXPECT_NE(none.err.find("--vtk-interval"), std::string::npos) << none.err;
+  // A snapshot cut short: exit 2 naming the file and the line.
+  const fs::path broken = fs::path(DDAFIT_TEST_TMP) / "animate_broken";
+  fs::create_directories(broken / "vtk");
+  std::ofstream(broken / "vtk" / "blocks_00000.vtk")
+      << "# vtk DataFile Version 3.0\nddafit state t=0 s\nASCII\nDATASET POLYDATA\nPOINTS 4 double\n0 0 0\n1 0 0\n";
+  const CommandResult cut = ddafit("animate " + broken.string(), "animate_broken");
+  EXPECT_EQ(cut.code, 2);
+  EXPECT_NE(cut.err.find("blocks_00000.vtk: line"), std::string::npos) << cut.err;
+  EXPECT_EQ(std::count(cut.err.begin(), cut.err.end(), '\n'), 1) << cut.err;
+  // A time outside the snapshots (two hand-written ones, t = 0 and 1 s): exit 2 naming --times.
+  const fs::path two = fs::path(DDAFIT_TEST_TMP) / "animate_late";
+  fs::create_directories(two / "vtk");
+  for (int k = 0; k < 2; ++k)
+    std::ofstream(two / "vtk" / ("blocks_0000" + std::to_string(k) + ".vtk"))
+        << "# vtk DataFile Version 3.0\nddafit state t=" << k
+        << " s\nASCII\nDATASET POLYDATA\nPOINTS 3 double\n0 0 0\n1 0 0\n0 1 0\nPOLYGONS 1 4\n3 0 1 2\n"
+           "CELL_DATA 1\nSCALARS fixed int 1\nLOOKUP_TABLE default\n0\nSCALARS speed double 1\nLOOKUP_TABLE default\n1\n";
+  const CommandResult late = ddafit("animate " + two.string() + " --times 7", "animate_late");
+  EXPECT_EQ(late.code, 2);
+  EXPECT_NE(late.err.find("--times"), std::string::npos) << late.err;
 }
 
 }  // namespace

@@ -51,6 +51,42 @@ TEST(Vajont, CoarseSectionSlidesDownslopeOnAFixedBase) {
   EXPECT_EQ(bedrock_after, bedrock_before);
 }
 
+// A slope that must stand (issue: the substep solver's throwaway prototype crept metres
+// in 2 s here): section I with 40 deg on the base and on every joint, 5 s, the solver the
+// scene picks (substep, 183 blocks). 40 deg is far above the ~20 deg at which section I
+// starts to slide (docs/vajont.md, stable state), so nothing may move beyond elastic
+// settling: 5 cm is the issue's bound (the implicit solver, whose blocks strain, settles
+// 2.7 cm; the substep solver's rigid blocks measured under 0.1 mm).
+TEST(Vajont, SlopeAtFortyDegreesStands) {
+  const Scene scene = io::read_scene(kScene, {{"mesh.block_size", "34.3"},
+                                              {"interfaces.clay.friction_angle", "40"},
+                                              {"time.duration", "5.0"}});
+  const SimulationResult r = simulate(scene);
+  ASSERT_EQ(r.summary.status, RunStatus::Completed) << r.summary.message;
+  EXPECT_EQ(r.summary.solver.integrator, Integrator::Substep);
+  for (const PointSummary& p : r.summary.points) EXPECT_LT(p.max_total_displacement, 0.05) << "point " << p.name;
+}
+
+// Section I, degraded state, the whole 45 s with the substep solver: the run completes
+// with the energy audit on, the slide runs out (point 1 lateral between 250 and 450 m:
+// the implicit solver gives 338 m, the substep solver 293-326 m over revisions and step
+// settings, docs/speed-accuracy.md), and no contact point overlaps deeper than 2.5 % of
+// the smaller block. The issue asks for 1 %: measured 1.47 % (two slide blocks at
+// t = 21.4 s, where the front meets the far bank); 8 substeps gave 2.2 %, a stiffer
+// push-out 1.3-1.5 %. The bound guards against the overlaps of revision .1 (25 % and a
+// stopped run on section VII), not the 1 % goal, which stays open (docs/performance.md).
+TEST(Vajont, SectionOneDegradedCompletesWithShallowOverlaps) {
+  const Scene scene = io::read_scene(std::string(DDAFIT_CASES_DIR) + "/vajont/degraded.yaml",
+                                     {{"mesh.block_size", "34.3"}});
+  const SimulationResult r = simulate(scene);
+  ASSERT_EQ(r.summary.status, RunStatus::Completed) << r.summary.message;
+  EXPECT_EQ(r.summary.solver.integrator, Integrator::Substep);
+  EXPECT_LT(r.summary.solver.worst_penetration_ratio, 0.025) << r.summary.solver.worst_penetration_at;
+  const PointSummary& top = r.summary.points.front();
+  EXPECT_GT(top.max_lateral_displacement, 250.0);
+  EXPECT_LT(top.max_lateral_displacement, 450.0);
+}
+
 TEST(Vajont, DegradedSceneInheritsAndDegrades) {
   // degraded.yaml is vajont.yaml with 25 % degradation: residual basal angle 9 deg,
   // mu = tan 9 = 0.158 (seed §3.4c).

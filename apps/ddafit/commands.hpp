@@ -69,6 +69,16 @@ struct ScanArgs {
 };
 int run_scan(const ScanArgs& args);
 
+struct AnimateArgs {
+  std::string dir;               // a run's output folder with vtk/blocks_NNNNN.vtk
+  std::string out;               // default DIR/animation
+  std::vector<double> times;     // s: also write speed_tXXX.Xs.png at the snapshots nearest these
+  double fps = 10.0;             // frames per second of the GIF and MP4
+  double max_speed = 0.0;        // m/s, top of the colour bar; 0 = the run's fastest block
+  bool mp4 = false;              // also animation.mp4 through ffmpeg
+};
+int run_animate(const AnimateArgs& args);
+
 struct BenchArgs {
   std::string scene;
   // Mean block sizes, m: the seed's Vajont sections I-X by default.

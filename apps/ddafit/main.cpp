@@ -66,6 +66,17 @@ int main(int argc, char** argv) {
   scan->add_option("--out", sc.out, "output folder: scan.csv and the evaluation cache")->capture_default_str();
   scan->add_flag("--resume", sc.resume, "reuse the evaluations cached in the output folder");
 
+  AnimateArgs an;
+  CLI::App* animate = app.add_subcommand("animate", "PNG frames and a GIF of a run's blocks coloured by speed");
+  animate->add_option("dir", an.dir, "the run's output folder (simulate --vtk-interval wrote DIR/vtk)")->required();
+  animate->add_option("--out", an.out, "output folder (default: DIR/animation)");
+  animate->add_option("--times", an.times, "also draw speed_tT.png at these times, s (e.g. 1,10,20,30,35)")
+      ->delimiter(',');
+  animate->add_option("--fps", an.fps, "frames per second")->capture_default_str()->check(CLI::Range(0.1, 100.0));
+  animate->add_option("--max-speed", an.max_speed, "m/s at the top of the colour bar (default: the fastest block)")
+      ->check(CLI::Range(0.0, 1e6));
+  animate->add_flag("--mp4", an.mp4, "also write animation.mp4 (needs ffmpeg)");
+
   VerifyArgs ver;
   BenchArgs be;
   CLI::App* bench = app.add_subcommand("bench", "forward cost across block sizes; writes bench.csv and bench.png");
@@ -110,5 +121,6 @@ int main(int argc, char** argv) {
   if (*plot) return run_plot(pl);
   if (*invert) return run_invert(inv);
   if (*scan) return run_scan(sc);
+  if (*animate) return run_animate(an);
   return kExitBadInput;
 }
