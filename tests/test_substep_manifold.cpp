@@ -322,6 +322,25 @@ double gap_between(const std::vector<Vec2>& a, const std::vector<Vec2>& b) {
   return d;
 }
 
+// A piece of a concave block whose top edge is a cut (the block's other piece lies above
+// it), and a diamond 0.1 m above that cut. No solid edge of the piece and no edge of the
+// diamond separates them (the diamond overhangs both sides of the piece): only the cut
+// does. The diamond lies over the block's other piece, whose own manifold holds it; read
+// through this piece's solid faces it came out 0.28 m "deep" (on Vajont section VI such a
+// reading, 0.62 m, stopped the run). With the top edge solid the same pair is a
+// speculative contact 0.1 m apart.
+TEST(SubstepManifold, APolygonBeyondACutHasNoContactWithThePiece) {
+  const auto piece = box(0, 0, 1, 1);
+  const auto diamond = square(Vec2(0.5, 2.1), std::sqrt(0.5), 45.0);  // corners 1 m from (0.5, 2.1)
+  const std::vector<char> top_cut = {1, 1, 0, 1}, all_solid = {1, 1, 1, 1};
+  const double margin = 0.5;
+  const Manifold across = collide_polygons(piece, diamond, margin, kSlop, top_cut);
+  EXPECT_EQ(across.point_count, 0);
+  const Manifold face = collide_polygons(piece, diamond, margin, kSlop, all_solid);
+  ASSERT_GE(face.point_count, 1);
+  EXPECT_NEAR(face.points[0].separation, 0.1, kLength);
+}
+
 TEST(SubstepManifold, RandomPairsMissNoContact) {
   // Hulls of 3-8 random points, ~1 m across at ~1.5 km, in random relative positions:
   // overlapping or closer than the margin must give points, farther must give none,
