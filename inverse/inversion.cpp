@@ -66,18 +66,29 @@ InversionSummary run_inversion(const Study& study, const InversionOptions& optio
   const int profiled = profile_parameter(study);
   const int scan = profiled >= 0 ? study.profile.points : 0;
   const long per_scan_point = study.profile.reoptimize ? std::max(1, budget / 2) : 1;
-  objective.set_planned(static_cast<long>(starts.size()) * budget + scan * per_scan_point);
+  const long fine = study.method.coarse_to_fine && study.method.fine_budget > 0 ? study.method.fine_budget : budget;
+  objective.set_planned(budget + static_cast<long>(starts.size() - 1) * fine + scan * per_scan_point);
 
   std::vector<bool> free;
   for (const Parameter& p : study.parameters) free.push_back(!p.discrete());
-  for (const auto& start : starts) {
+  for (const auto& level_start : starts) {
     LevelFit level;
-    level.start = start;
-    level.fit = fit(objective, study, start, free, budget);
+    level.start = level_start;
+    int level_budget = budget;
+    // Coarse to fine: the continuous values start where the last (coarser) level ended.
+    std::vector<double> start = level_start;
+    if (study.method.coarse_to_fine && !out.levels.empty() && !out.levels.back().best.failed) {
+      for (size_t j = 0; j < start.size(); ++j)
+        if (free[j]) start[j] = out.levels.back().best.values[j];
+      if (study.method.fine_budget > 0) level_budget = study.method.fine_budget;
+    }
+    level.fit = fit(objective, study, start, free, level_budget);
     if (objective.has_best()) level.best = objective.best();
     level.history = objective.best_history();
     out.levels.push_back(std::move(level));
-    if (out.best_level < 0 || out.levels.back().best.chi2 < out.levels[out.best_level].best.chi2)
+    // Coarse to fine reports the finest level; independent levels the best chi^2.
+    if (study.method.coarse_to_fine || out.best_level < 0 ||
+        out.levels.back().best.chi2 < out.levels[out.best_level].best.chi2)
       out.best_level = static_cast<int>(out.levels.size()) - 1;
   }
   LevelFit& best = out.levels[out.best_level];

@@ -74,6 +74,7 @@ json report_json(const Study& study, const InversionSummary& s) {
                            {"stop_reason", l.fit.stop_reason},
                            {"observations", observations_json(study, l.best)}});
   j["best_level"] = s.best_level;
+  j["level_strategy"] = study.method.coarse_to_fine ? "coarse_to_fine" : "independent";
   if (s.best_level >= 0) {
     const LevelFit& b = s.levels[s.best_level];
     j["best"] = named_values(study, b.best.values, false);
@@ -119,6 +120,10 @@ std::string markdown(const Study& study, const InversionSummary& s) {
                                study.path, study.scene_path, s.model_version, s.scene_hash);
   md += fmt::format("{} evaluations: {} forward runs made now, {} from the cache ({}); {:.1f} s wall, {:.1f} s in runs.\n\n",
                     s.evaluations, s.run, s.cached, s.cache_path, s.wall_seconds, s.run_seconds);
+  md += study.method.coarse_to_fine
+            ? "Levels fitted coarse to fine: each starts from the last one's best point; the last (finest) is "
+              "reported.\n\n"
+            : "Levels fitted independently from the study's start; the lowest chi2 is reported.\n\n";
   md += "## Best parameters per level\n\n| level | ";
   for (const Parameter& p : study.parameters) md += p.name + " | ";
   md += "chi2 | runs | stop |\n|---|";
@@ -126,7 +131,10 @@ std::string markdown(const Study& study, const InversionSummary& s) {
   md += "\n";
   for (size_t l = 0; l < s.levels.size(); ++l) {
     const LevelFit& f = s.levels[l];
-    md += fmt::format("| {}{} | ", l + 1, static_cast<int>(l) == s.best_level ? " (best)" : "");
+    md += fmt::format("| {}{} | ", l + 1,
+                      static_cast<int>(l) != s.best_level ? ""
+                      : study.method.coarse_to_fine       ? " (finest, reported)"
+                                                          : " (best)");
     for (double v : f.best.values) md += fmt::format("{:.6g} | ", v);
     md += fmt::format("{:.4g} | {} | {} |\n", f.best.chi2, f.fit.evaluations, f.fit.stop_reason);
   }

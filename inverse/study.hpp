@@ -49,6 +49,13 @@ struct MethodOptions {
   int budget = 100;                     // objective evaluations per fit (per level), cached or run
   double step_tolerance = 0.5;          // stop when a step is below this x each resolution
   double chi2_tolerance = 1e-4;         // stop when chi^2 changes by less than this (absolute)
+  // How the levels of a discrete parameter are fitted:
+  //   independent     every level from the study's start; the best chi^2 is reported;
+  //   coarse_to_fine  in the order listed (coarse first), each level starting from the last
+  //                   one's best point with `fine_budget` runs; the last (finest) level is
+  //                   reported. Needs exactly one parameter with levels.
+  bool coarse_to_fine = false;
+  int fine_budget = 0;  // runs per level after the first under coarse_to_fine; 0 = budget
 };
 
 // The profile behind the bounding friction: chi^2 along the degradation parameter.

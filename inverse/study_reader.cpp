@@ -50,6 +50,9 @@ class StudyReader : public io::YamlChecks {
     if (obs.size() == 0) fail("observations", "the list is empty; give at least one observation");
     for (size_t k = 0; k < obs.size(); ++k) s.observations.push_back(observation(obs[k], indexed("observations", k)));
     if (const YAML::Node n = root["method"]) s.method = method(n);
+    if (s.method.coarse_to_fine &&
+        std::count_if(s.parameters.begin(), s.parameters.end(), [](const Parameter& q) { return q.discrete(); }) != 1)
+      fail("method.levels", "coarse_to_fine needs exactly one parameter with levels (coarse first, e.g. block sizes)");
     if (const YAML::Node n = root["profile"]) s.profile = profile(n, s.parameters);
     return s;
   }
@@ -123,7 +126,8 @@ class StudyReader : public io::YamlChecks {
   }
 
   MethodOptions method(const YAML::Node& n) const {
-    check_keys(n, "method", {"optimizer", "algorithm", "budget", "step_tolerance", "chi2_tolerance"});
+    check_keys(n, "method",
+               {"optimizer", "algorithm", "budget", "step_tolerance", "chi2_tolerance", "levels", "fine_budget"});
     MethodOptions m;
     if (const YAML::Node o = n["optimizer"]) {
       const std::string name = text(o, "method.optimizer");
@@ -147,6 +151,18 @@ class StudyReader : public io::YamlChecks {
     opt_number(n, "method", "chi2_tolerance", m.chi2_tolerance);
     if (!(m.step_tolerance > 0.0)) fail("method.step_tolerance", "must be > 0 (a fraction of each resolution)");
     if (!(m.chi2_tolerance > 0.0)) fail("method.chi2_tolerance", "must be > 0");
+    if (const YAML::Node l = n["levels"]) {
+      const std::string how = text(l, "method.levels");
+      if (how == "coarse_to_fine") m.coarse_to_fine = true;
+      else if (how != "independent") fail("method.levels", "unknown strategy '" + how + "'; known: independent, coarse_to_fine");
+    }
+    if (const YAML::Node b = n["fine_budget"]) {
+      const double budget = number(b, "method.fine_budget");
+      if (!(budget >= 1.0) || budget != std::floor(budget) || budget > 1e6)
+        fail("method.fine_budget", "is " + b.Scalar() + "; must be a whole number of forward runs >= 1");
+      if (!m.coarse_to_fine) fail("method.fine_budget", "only with levels: coarse_to_fine");
+      m.fine_budget = static_cast<int>(budget);
+    }
     return m;
   }
 

@@ -3,6 +3,7 @@
 // the bounding friction of the profile.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <filesystem>
@@ -229,6 +230,67 @@ TEST(InverseObjective, FailedRunsAreValuesAndNoPointRunsTwice) {
   const BoundingFriction& f = s.friction;
   for (const ProfilePoint& p : f.profile) EXPECT_EQ(p.failed, p.value > 45.0) << p.value;
   EXPECT_FALSE(s.levels.front().best.failed);
+}
+
+// A forward model that records every run's overrides.
+struct RecordingForward {
+  std::vector<Overrides>* runs;
+  SimulationResult operator()(const std::string& scene, const Overrides& overrides) const {
+    runs->push_back(overrides);
+    return run_forward(scene, overrides);
+  }
+};
+
+double override_value(const Overrides& overrides, const std::string& key) {
+  for (const auto& [k, v] : overrides)
+    if (k == key) return std::stod(v);
+  return NAN;
+}
+
+TEST(InverseLevels, CoarseToFineStartsEachLevelAtTheLastBestAndReportsTheFinest) {
+  // The twin study with the time step as its levels, coarse (2 ms) then fine (the truth's
+  // 1 ms): under method.levels coarse_to_fine the fine level's first run is exactly the
+  // coarse level's best point, it takes at most fine_budget runs, and it is the level
+  // reported. Recovery as in the twin tests (two resolutions).
+  const fs::path path = twin_study("c2f", "{budget: 30, levels: coarse_to_fine, fine_budget: 12}", 0);
+  std::string text;
+  {
+    std::ifstream in(path);
+    text.assign(std::istreambuf_iterator<char>(in), {});
+  }
+  text.replace(text.find("parameters:\n"), 12, "parameters:\n  - {name: step, key: time.step, levels: [0.002, 0.001]}\n");
+  std::ofstream(path) << text;
+  const Study study = read_study(path.string());
+  ASSERT_TRUE(study.method.coarse_to_fine);
+  InversionOptions options;
+  options.out_dir = fresh_dir("c2f/out").string();
+  options.model_version = "test";
+  std::vector<Overrides> runs;
+  const InversionSummary s = run_inversion(study, options, RecordingForward{&runs});
+  ASSERT_EQ(s.levels.size(), 2u);
+  EXPECT_EQ(s.best_level, 1) << "coarse to fine reports the finest (last) level";
+  const LevelFit& coarse = s.levels[0];
+  const LevelFit& fine = s.levels[1];
+  ASSERT_FALSE(coarse.best.failed);
+  EXPECT_LE(fine.fit.evaluations, 12);
+  const auto first_fine = std::find_if(runs.begin(), runs.end(), [](const Overrides& o) {
+    return override_value(o, "time.step") == 0.001;
+  });
+  ASSERT_NE(first_fine, runs.end());
+  EXPECT_EQ(override_value(*first_fine, "interfaces.clay.degradation_percent"), coarse.best.values[1]);
+  EXPECT_EQ(override_value(*first_fine, "interfaces.joint.roughness_angle"), coarse.best.values[2]);
+  EXPECT_NEAR(fine.best.values[1], kTrueDegradation, 2 * kDegradationResolution);
+  EXPECT_NEAR(fine.best.values[2], kTrueRoughness, 2 * kRoughnessResolution);
+}
+
+TEST(InverseLevels, CoarseToFineNeedsExactlyOneLeveledParameter) {
+  const fs::path path = twin_study("c2f_bad", "{levels: coarse_to_fine}", 0);
+  try {
+    read_study(path.string());
+    FAIL() << "a study without levels was accepted for coarse_to_fine";
+  } catch (const StudyError& e) {
+    EXPECT_NE(std::string(e.what()).find("method.levels"), std::string::npos) << e.what();
+  }
 }
 
 TEST(InverseCache, StoresSummariesBitExactlyAndKeysOnExactValues) {

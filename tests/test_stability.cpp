@@ -3,6 +3,8 @@
 // iteration cycle, and a scene whose touching groups have no interface.
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "forward/simulation.hpp"
 #include "verify/cases.hpp"
 #include "verify/verification.hpp"
@@ -72,6 +74,29 @@ TEST(Stability, TimeStepWarningMarksTheInaccurateRuns) {
     EXPECT_EQ(p.warned, inaccurate) << "time step " << p.time_step << ": displacement error "
                                     << p.displacement_error;
   }
+}
+
+TEST(Stability, SubstepSolverFailsWithADiagnosisNeverWithGarbage) {
+  // Where the substep solver fails (docs/verification.md, its stability map): a stack of
+  // five 1 m blocks at rest with 20-50 ms steps. Every run either completes with a finite
+  // result or stops with a message naming the settings to change; at the scene's 1 ms x 4
+  // both scenes hold their verification tolerances (incline 0.5 %, stack 1 mm).
+  const auto map = verification::substep_stability_map({1e-3, 5e-2}, {4});
+  ASSERT_EQ(map.size(), 4u);
+  for (const auto& p : map) {
+    if (p.completed) {
+      EXPECT_TRUE(std::isfinite(p.error)) << p.scene << " at " << p.time_step << " s";
+    } else {
+      EXPECT_NE(p.diagnosis.find("time.substeps"), std::string::npos) << p.diagnosis;
+      EXPECT_NE(p.diagnosis.find("step"), std::string::npos) << p.diagnosis;
+    }
+    if (p.time_step == 1e-3) {
+      EXPECT_TRUE(p.completed) << p.scene << ": " << p.diagnosis;
+      EXPECT_LT(p.error, p.scene == "incline" ? 0.005 : 1e-3) << p.scene;
+    }
+  }
+  // The 50 ms stack is the measured failure: it must be reported as one.
+  EXPECT_FALSE(map[3].completed) << "stack at 50 ms x 4 completed with top movement " << map[3].error << " m";
 }
 
 }  // namespace

@@ -254,6 +254,37 @@ std::vector<StabilityPoint> incline_stability_map(const std::vector<double>& pen
   return map;
 }
 
+std::vector<SubstepStabilityPoint> substep_stability_map(const std::vector<double>& time_steps,
+                                                         const std::vector<int>& substeps) {
+  std::vector<SubstepStabilityPoint> map;
+  InclineSetup setup;
+  setup.roughness_angle = 5.0;
+  const Vec2 along = Vec2(1.0, -setup.slope_ratio).normalized();
+  for (const std::string name : {"incline", "stack"}) {
+    for (double step : time_steps) {
+      for (int n : substeps) {
+        setup.time_step = step;
+        Scene scene = name == "incline" ? incline_scene(setup) : stack_scene();
+        scene.max_step = step;
+        scene.output_interval = std::max(scene.output_interval, step);
+        scene.options.substeps = n;
+        const SimulationResult r = simulate(with_solver(scene, Integrator::Substep));
+        SubstepStabilityPoint p{name, step, n, r.summary.status == RunStatus::Completed, NAN, r.summary.message};
+        if (p.completed && name == "incline") {
+          const Trace trace = incline_trace(r, along);
+          std::vector<double> d, v;
+          analytic_for(setup).solve(trace.time, d, v);
+          p.error = incline_errors(trace, d, v).displacement;
+        } else if (p.completed) {
+          p.error = r.summary.points[0].max_total_displacement;
+        }
+        map.push_back(p);
+      }
+    }
+  }
+  return map;
+}
+
 std::vector<Check> all_checks(Integrator integrator) {
   std::vector<Check> checks;
   const std::string suffix = integrator == Integrator::Implicit ? "" : std::string("/") + to_string(integrator);

@@ -44,4 +44,18 @@ std::vector<StabilityPoint> incline_stability_map(const std::vector<double>& pen
                                                   const std::vector<double>& time_steps,
                                                   Integrator integrator = Integrator::Implicit);
 
+// One cell of the substep solver's stability map: a scene run at a time step and a
+// substep count. The substep solver has no penalty; its settings are these two.
+struct SubstepStabilityPoint {
+  std::string scene;       // "incline" (seed Eq. 5, phi 25, i 5) or "stack" (five blocks at rest)
+  double time_step = 0.0;  // s
+  int substeps = 0;
+  bool completed = false;
+  // incline: worst relative displacement error (d >= 1 cm); stack: top block movement, m.
+  double error = 0.0;
+  std::string diagnosis;   // the run's message when it did not complete
+};
+std::vector<SubstepStabilityPoint> substep_stability_map(const std::vector<double>& time_steps,
+                                                         const std::vector<int>& substeps);
+
 }  // namespace ddafit::verification
