@@ -52,13 +52,13 @@ void write_frame_data(const Snapshot& s, const fs::path& free_path, const fs::pa
 }
 
 // The gnuplot commands that draw one frame (terminal and output set by the caller).
-std::string frame_plot(const fs::path& free_path, const fs::path& fixed_path, double time) {
+std::string frame_plot(const fs::path& free_path, const fs::path& fixed_path, double time, double line_width) {
   return fmt::format(
       "set title 't = {:.1f} s'\n"
       "plot '{}' using 1:2 with filledcurves closed fc rgb '#d9d9d9' notitle, "
       "'{}' using 1:2:3 with filledcurves closed fc palette notitle, "
-      "'' using 1:2 with lines lc rgb '#202020' lw 0.4 notitle\n",
-      time, fixed_path.string(), free_path.string());
+      "'' using 1:2 with lines lc rgb '#404040' lw {} notitle\n",
+      time, fixed_path.string(), free_path.string(), line_width);
 }
 
 // Frame index nearest to each requested time; an empty string or a one-line error.
@@ -97,17 +97,18 @@ int run_animate(const AnimateArgs& args) {
     std::cerr << "ddafit animate: " << problem << "\n";
     return kExitBadInput;
   }
-  // One colour scale and one view for the whole run, so frames compare.
+  // One colour scale and one view for the whole run, so frames compare. The view is the
+  // first snapshot's extent (the whole scene at the start): a block thrown far out of the
+  // scene would otherwise shrink the slide to a corner of every frame.
   double top_speed = args.max_speed;
-  double x0 = 1e300, x1 = -1e300, y0 = 1e300, y1 = -1e300;
-  for (const Snapshot& s : frames) {
-    if (args.max_speed <= 0.0)
+  if (args.max_speed <= 0.0)
+    for (const Snapshot& s : frames)
       for (size_t b = 0; b < s.speed.size(); ++b)
         if (!s.fixed[b]) top_speed = std::max(top_speed, s.speed[b]);
-    for (const Vec2& p : s.points) {
-      x0 = std::min(x0, p.x()), x1 = std::max(x1, p.x());
-      y0 = std::min(y0, p.y()), y1 = std::max(y1, p.y());
-    }
+  double x0 = 1e300, x1 = -1e300, y0 = 1e300, y1 = -1e300;
+  for (const Vec2& p : frames.front().points) {
+    x0 = std::min(x0, p.x()), x1 = std::max(x1, p.x());
+    y0 = std::min(y0, p.y()), y1 = std::max(y1, p.y());
   }
   if (!(top_speed > 0.0)) top_speed = 1.0;
   top_speed = std::ceil(top_speed);
@@ -123,6 +124,8 @@ int run_animate(const AnimateArgs& args) {
   fs::create_directories(data, ec);
   const double aspect = (y1 - y0) / std::max(x1 - x0, 1e-9);
   const int width = 1600, height = std::clamp(static_cast<int>(std::lround(width * aspect)) + 160, 400, 1400);
+  // Outlines thin out with the block count, so that thousands of blocks keep their colour.
+  const double line_width = frames.front().polygons.size() > 500 ? 0.1 : 0.5;
   const std::string common = fmt::format(
       "set size ratio -1\nset xrange [{}:{}]\nset yrange [{}:{}]\nset xlabel 'x (m)'\nset ylabel 'y (m)'\n"
       "set cbrange [0:{}]\nset cblabel 'block speed (m/s)'\n{}",
@@ -139,13 +142,13 @@ int run_animate(const AnimateArgs& args) {
       const fs::path fixed_path = data / fmt::format("fixed_{:05d}.dat", k);
       write_frame_data(frames[k], free_path, fixed_path);
       png.print("set output '{}'\n{}", (out / fmt::format("frame_{:05d}.png", k)).string(),
-                frame_plot(free_path, fixed_path, frames[k].time));
-      gif.print("{}", frame_plot(free_path, fixed_path, frames[k].time));
+                frame_plot(free_path, fixed_path, frames[k].time, line_width));
+      gif.print("{}", frame_plot(free_path, fixed_path, frames[k].time, line_width));
     }
     for (size_t k : chosen)
       png.print("set output '{}'\n{}", (out / fmt::format("speed_t{:05.1f}s.png", frames[k].time)).string(),
                 frame_plot(data / fmt::format("free_{:05d}.dat", k), data / fmt::format("fixed_{:05d}.dat", k),
-                           frames[k].time));
+                           frames[k].time, line_width));
   } catch (const std::system_error& e) {
     std::cerr << out.string() << ": cannot write: " << e.what() << "\n";
     return kExitBadInput;
