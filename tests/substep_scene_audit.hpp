@@ -87,11 +87,11 @@ BlockInput block(const std::string& name, std::vector<Vec2> polygon, bool fixed,
   return b;
 }
 
-Vec2 centroid_of(const std::vector<Vec2>& polygon) { return polygon_moments(polygon).centroid; }
+[[maybe_unused]] Vec2 centroid_of(const std::vector<Vec2>& polygon) { return polygon_moments(polygon).centroid; }
 
 // A unit square turned `degrees` counter-clockwise about its centre, placed so that its
 // lowest corner (for 0 and 90 degrees: its bottom-left corner) is at `corner`.
-std::vector<Vec2> square_with_low_corner_at(const Vec2& corner, double degrees) {
+[[maybe_unused]] std::vector<Vec2> square_with_low_corner_at(const Vec2& corner, double degrees) {
   const double a = degrees * kDegree;
   const Vec2 ex(std::cos(a), std::sin(a)), ey(-std::sin(a), std::cos(a));
   std::vector<Vec2> p = {Vec2::Zero(), ex, ex + ey, ey};  // counter-clockwise
@@ -219,12 +219,12 @@ SimulationHooks audit_hooks(RunAudit& audit, const Vec2& gravity) {
   return hooks;
 }
 
-std::string name_of(Integrator integrator) { return to_string(integrator); }
+[[maybe_unused]] std::string name_of(Integrator integrator) { return to_string(integrator); }
 
 // The checks every contact scene shares: the run completed, the energy budget held, no
 // block passed through another and, for the substep solver, the overlaps stayed within
 // the limit.
-void expect_contact_physics(const SimulationResult& r, const RunAudit& audit, Integrator integrator,
+[[maybe_unused]] void expect_contact_physics(const SimulationResult& r, const RunAudit& audit, Integrator integrator,
                             const std::string& label) {
   ASSERT_EQ(r.summary.status, RunStatus::Completed) << label << ": " << r.summary.message;
   ASSERT_GT(audit.outputs, 10) << label;
