@@ -141,11 +141,15 @@ class StudyReader : public io::YamlChecks {
       if (m.algorithm != "LN_BOBYQA" && m.algorithm != "LN_SBPLX" && m.algorithm != "GN_DIRECT_L")
         fail("method.algorithm", "unknown algorithm '" + m.algorithm + "'; known: LN_BOBYQA, LN_SBPLX, GN_DIRECT_L");
     }
+    // A number of forward runs: whole, at least 1.
+    const auto runs = [&](const YAML::Node& b, const std::string& key) {
+      const double value = number(b, key);
+      if (!(value >= 1.0) || value != std::floor(value) || value > 1e6)
+        fail(key, "is " + b.Scalar() + "; must be a whole number of forward runs >= 1");
+      return static_cast<int>(value);
+    };
     if (const YAML::Node b = n["budget"]) {
-      const double budget = number(b, "method.budget");
-      if (!(budget >= 1.0) || budget != std::floor(budget) || budget > 1e6)
-        fail("method.budget", "is " + b.Scalar() + "; must be a whole number of forward runs >= 1");
-      m.budget = static_cast<int>(budget);
+      m.budget = runs(b, "method.budget");
     }
     opt_number(n, "method", "step_tolerance", m.step_tolerance);
     opt_number(n, "method", "chi2_tolerance", m.chi2_tolerance);
@@ -157,11 +161,8 @@ class StudyReader : public io::YamlChecks {
       else if (how != "independent") fail("method.levels", "unknown strategy '" + how + "'; known: independent, coarse_to_fine");
     }
     if (const YAML::Node b = n["fine_budget"]) {
-      const double budget = number(b, "method.fine_budget");
-      if (!(budget >= 1.0) || budget != std::floor(budget) || budget > 1e6)
-        fail("method.fine_budget", "is " + b.Scalar() + "; must be a whole number of forward runs >= 1");
       if (!m.coarse_to_fine) fail("method.fine_budget", "only with levels: coarse_to_fine");
-      m.fine_budget = static_cast<int>(budget);
+      m.fine_budget = runs(b, "method.fine_budget");
     }
     return m;
   }

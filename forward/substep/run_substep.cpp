@@ -103,7 +103,7 @@ void measure_contacts(const BlockSystem& s, const SubstepWork& w, double time, d
 std::string detect(const BlockSystem& s, SubstepWork& w, CollideSettings& settings, StepProfile& profile) {
   ScopedTimer timer(profile.find_contacts);
   settings.extra_reach = w.extra_reach;
-  const auto pairs = find_pairs(s, w.shapes, settings.margin, w.extra_reach);
+  const auto pairs = find_pairs(s, w.shapes, settings.margin, settings.extra_reach);
   std::string problem = collide(s, w.shapes, pairs, settings, w.manifolds);
   settings.first_step = false;
   return problem;
