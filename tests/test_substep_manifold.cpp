@@ -341,6 +341,32 @@ TEST(SubstepManifold, APolygonBeyondACutHasNoContactWithThePiece) {
   EXPECT_NEAR(face.points[0].separation, 0.1, kLength);
 }
 
+TEST(SubstepManifold, BlockCornerSetInAValleyCornerKeepsItsContact) {
+  // Vajont section VII at 12.7 s, as dumped from the run: a toe block slid along the valley
+  // floor until its lower right corner sat just past the corner where the opposite bank's
+  // 45-degree face starts; its own right face leans at 52 degrees. The block's face is the
+  // best axis, but the bank piece's side turned to it is a cut (the bank is concave there),
+  // so its best solid face faces away. The pair had no point and the block went into the
+  // bank. The contact is the block's corner on the bank's face: 26.6 mm deep in this
+  // geometry (distance from the line through the dumped corners); 1 mm covers the dump's
+  // rounding.
+  const Vec2 o(1537.9, 608.7);
+  const std::vector<Vec2> block = {o + Vec2(-2.9105818909, 2.2461282800), o + Vec2(-3.8269892839, 2.9518834235),
+                                   o + Vec2(-3.8208732549, 2.0790345175), o + Vec2(-3.8064884919, 0.0261134551),
+                                   o + Vec2(0.0238852035, -0.0138002860)};
+  const std::vector<Vec2> bank = {o + Vec2(92.0, 92.0), o, o + Vec2(656.0, -208.7), o + Vec2(192.0, 131.5),
+                                  o + Vec2(100.0, 98.0)};
+  const std::vector<char> block_solid(block.size(), 1), bank_solid = {1, 0, 0, 1, 1};  // the bank piece's cuts
+  const double margin = 0.625;
+  const Manifold m = collide_polygons(block, bank, margin, 2.5e-4, block_solid, bank_solid, margin);
+  ASSERT_GE(m.point_count, 1);
+  const ManifoldPoint& deepest =
+      m.point_count == 2 && m.points[1].separation < m.points[0].separation ? m.points[1] : m.points[0];
+  EXPECT_NEAR(deepest.separation, -(0.0238852035 + 0.0138002860) / std::sqrt(2.0), 1e-3);
+  EXPECT_LT((deepest.point - o).norm(), 0.05);                              // at the valley corner
+  EXPECT_LT((m.normal - Vec2(1.0, -1.0) / std::sqrt(2.0)).norm(), 1e-6);  // into the bank's 45-degree face
+}
+
 TEST(SubstepManifold, RandomPairsMissNoContact) {
   // Hulls of 3-8 random points, ~1 m across at ~1.5 km, in random relative positions:
   // overlapping or closer than the margin must give points, farther must give none,

@@ -5,6 +5,7 @@
 
 #include "forward/sparse_system.hpp"
 #include "forward/step/control_time_step.hpp"
+#include "forward/step/containment_check.hpp"
 #include "forward/step/energy_check.hpp"
 #include "forward/step/find_contacts.hpp"
 #include "forward/step/open_close_iterate.hpp"
@@ -174,6 +175,11 @@ void run_implicit(const Scene& scene, BlockSystem& system, RunRecorder& recorder
     run.largest_step = std::max(run.largest_step, attempt);
     grow_step(control, options);
     if (const std::string problem = check_energy(audit, system, scene.gravity); !problem.empty()) {
+      recorder.record_row(time, system);
+      fail(RunStatus::Failed, problem);
+      break;
+    }
+    if (const std::string problem = check_containment(system); !problem.empty()) {
       recorder.record_row(time, system);
       fail(RunStatus::Failed, problem);
       break;

@@ -100,6 +100,34 @@ Face grow_face(const Shape& p, int edge, double flat) {
   return f;
 }
 
+// The edge of `inc` facing the direction `normal` (unit) the most, among its solid edges:
+// the incident face. `facing` is the cosine between its outward normal and `normal`;
+// -1 is face to face. A convex polygon always has an edge with facing < 0; only a piece
+// whose edges turned that way are all cuts can give facing > 0.
+struct Incident {
+  int edge = -1;
+  double facing = kInfinity;
+};
+
+Incident incident_edge(const Shape& inc, std::span<const char> solid, const Vec2& normal, double tiny) {
+  Incident best;
+  for (int j = 0; j < inc.n; ++j) {
+    if (!solid.empty() && !solid[static_cast<size_t>(j)]) continue;
+    const Vec2 edge = inc.at(j + 1) - inc.at(j);
+    const double length = edge.norm();
+    if (!(length > tiny)) continue;
+    const double d = normal.dot(outward(edge)) / length;
+    if (d < best.facing) best = {j, d};
+  }
+  return best;
+}
+
+// Unit outward normal of the reference face grown from edge `edge` of `ref`.
+Vec2 face_normal(const Shape& ref, int edge, double flat) {
+  const Face f = grow_face(ref, edge, flat);
+  return outward((ref.at(f.last) - ref.at(f.first)).normalized());
+}
+
 // When the closest points of segments [p1, q1] and [p2, q2] are an end of each, which
 // ends (0 = p, 1 = q); {-1, -1} when a closest point is inside a segment.
 struct Ends {
@@ -170,32 +198,35 @@ Manifold collide_polygons(std::span<const Vec2> a, std::span<const Vec2> b, doub
 
   // Reference polygon: a unless b's axis is clearly better, so that two equally good
   // axes do not swap the reference (and the point ids) from one call to the next.
-  const bool flip = axis_a.edge < 0 || (axis_b.edge >= 0 && axis_b.separation > axis_a.separation + 0.1 * linear_slop);
+  const double flat = 1e-3 * linear_slop;
+  bool flip = axis_a.edge < 0 || (axis_b.edge >= 0 && axis_b.separation > axis_a.separation + 0.1 * linear_slop);
+  const auto incident_for = [&](bool f) {
+    return incident_edge(f ? sa : sb, f ? a_solid : b_solid,
+                         face_normal(f ? sb : sa, f ? axis_b.edge : axis_a.edge, flat), tiny);
+  };
+  Incident incident = incident_for(flip);
+  if (incident.edge < 0) return m;
+  // An incident piece whose faces towards the reference face are all cuts (facing > 0)
+  // offers no face there: across its cuts lie the block's other pieces. The contact, if
+  // any, is then one of its solid faces against the other polygon: take the other
+  // polygon's best axis as the reference, or no contact if that fails the same way.
+  // Without this, a toe block on Vajont section VII whose corner sat in the valley corner
+  // read the opposite bank's face as turned away from it, got no point, and went into the
+  // bank (the first axis was its own face; the bank piece's side facing it was a cut).
+  if (incident.facing > 0.0) {
+    if ((flip ? axis_a.edge : axis_b.edge) < 0) return m;
+    flip = !flip;
+    incident = incident_for(flip);
+    if (incident.edge < 0 || incident.facing > 0.0) return m;
+  }
   const Shape& ref = flip ? sb : sa;
   const Shape& inc = flip ? sa : sb;
   const int ref_owner = flip ? 1 : 0, inc_owner = 1 - ref_owner;
-  const double flat = 1e-3 * linear_slop;
   const Face rf = grow_face(ref, flip ? axis_b.edge : axis_a.edge, flat);
   const Vec2 v11 = ref.at(rf.first), v12 = ref.at(rf.last);
   const double ref_length = (v12 - v11).norm();
   const Vec2 tangent = (v12 - v11) / ref_length, normal = outward(tangent);
-
-  // Incident face: the edge of the other polygon facing the reference face the most.
-  int inc_edge = -1;
-  double facing = kInfinity;
-  const std::span<const char> inc_solid = flip ? a_solid : b_solid;
-  for (int j = 0; j < inc.n; ++j) {
-    if (!inc_solid.empty() && !inc_solid[static_cast<size_t>(j)]) continue;
-    const Vec2 edge = inc.at(j + 1) - inc.at(j);
-    const double length = edge.norm();
-    if (!(length > tiny)) continue;
-    const double d = normal.dot(outward(edge)) / length;
-    if (d < facing) {
-      facing = d;
-      inc_edge = j;
-    }
-  }
-  if (inc_edge < 0) return m;
+  const int inc_edge = incident.edge;
   const Face incf = grow_face(inc, inc_edge, flat);
   const Vec2 v21 = inc.at(incf.first), v22 = inc.at(incf.last);
   m.normal = flip ? Vec2(-normal) : normal;  // always from a to b

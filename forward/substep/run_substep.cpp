@@ -4,6 +4,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "forward/step/containment_check.hpp"
 #include "forward/step/energy_check.hpp"
 #include "forward/substep/block_stress.hpp"
 #include "forward/substep/collide.hpp"
@@ -351,6 +352,10 @@ void run_substep(const Scene& scene, BlockSystem& s, RunRecorder& recorder, Simu
       return;
     }
     if (const std::string problem = check_energy(audit, s, scene.gravity); !problem.empty()) {
+      fail(problem);
+      return;
+    }
+    if (const std::string problem = check_containment(s); !problem.empty()) {
       fail(problem);
       return;
     }
