@@ -4,7 +4,9 @@
 #   bash scripts/vajont_sections.sh [OUT_DIR] [SECTIONS] [STATES]
 # OUT_DIR defaults to results/vajont-sections; SECTIONS to all ten ("I II ... X");
 # STATES to "reference degraded". Extra settings for every run go in DDAFIT_SETS
-# (e.g. DDAFIT_SETS="time.step=0.0025"). A finished run (summary.json present) is not
+# (e.g. DDAFIT_SETS="time.step=0.0025"); DDAFIT_THREADS sets --threads (results are the
+# same on any thread count, so one thread leaves a core free for other work); DDAFIT_BIN
+# names another ddafit binary (a copy keeps a long batch safe from rebuilds). A finished run (summary.json present) is not
 # redone. Writes OUT_DIR/sections.csv: one row per run with point 1's results, the wall
 # time, steps, contact points and worst overlap (about an hour of both cores for all 20).
 set -euo pipefail
@@ -12,7 +14,7 @@ cd "$(dirname "$0")/.."
 out=${1:-results/vajont-sections}
 sections=${2:-"I II III IV V VI VII VIII IX X"}
 states=${3:-"reference degraded"}
-ddafit=./build/apps/ddafit/ddafit
+ddafit=${DDAFIT_BIN:-./build/apps/ddafit/ddafit}
 mkdir -p "$out"
 
 size_of() {  # seed Table 2 mean block sizes, m (cases/vajont/vajont.yaml)
@@ -25,6 +27,7 @@ size_of() {  # seed Table 2 mean block sizes, m (cases/vajont/vajont.yaml)
 
 sets=()
 for s in ${DDAFIT_SETS:-}; do sets+=(--set "$s"); done
+[ -n "${DDAFIT_THREADS:-}" ] && sets+=(--threads "$DDAFIT_THREADS")
 for section in $sections; do
   size=$(size_of "$section")
   for state in $states; do
