@@ -65,7 +65,9 @@ std::string slurp(const std::filesystem::path& p) {
 
 // Adds a scene file, its base chain and the files its scalars name (regions' CSV surfaces).
 void add_scene_file(const std::filesystem::path& path, Fnv1a& hash, std::set<std::string>& seen, int depth) {
-  if (depth > 8 || !seen.insert(std::filesystem::weakly_canonical(path).string()).second) return;
+  std::error_code ec;
+  const std::filesystem::path canonical = std::filesystem::weakly_canonical(path, ec);
+  if (depth > 8 || !seen.insert(ec ? path.string() : canonical.string()).second) return;
   const std::string text = slurp(path);
   hash.add(path.filename().string());
   hash.add(text);
@@ -82,11 +84,12 @@ void add_scene_file(const std::filesystem::path& path, Fnv1a& hash, std::set<std
     stack.pop_back();
     if (n.IsScalar()) {
       const std::filesystem::path named = dir / n.Scalar();
-      std::error_code ec;
-      if (n.Scalar().size() < 256 && std::filesystem::is_regular_file(named, ec)) {
+      std::error_code named_ec;
+      if (n.Scalar().size() < 256 && std::filesystem::is_regular_file(named, named_ec)) {
+        const std::filesystem::path key = std::filesystem::weakly_canonical(named, named_ec);
         if (named.extension() == ".yaml" || named.extension() == ".yml")
           add_scene_file(named, hash, seen, depth + 1);
-        else if (seen.insert(std::filesystem::weakly_canonical(named).string()).second)
+        else if (seen.insert(named_ec ? named.string() : key.string()).second)
           hash.add(n.Scalar()), hash.add(slurp(named));
       }
     } else if (n.IsSequence()) {

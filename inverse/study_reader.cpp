@@ -11,6 +11,7 @@
 
 #include "forward/io/yaml_checks.hpp"
 #include "inverse/study.hpp"
+#include "forward/io/text_input.hpp"
 
 namespace ddafit::inverse {
 
@@ -38,7 +39,9 @@ class StudyReader : public io::YamlChecks {
     const std::string scene = text(required(root, "", "scene", "name the scene file (relative to the study)"), "scene");
     const std::filesystem::path p(scene);
     s.scene_path = p.is_relative() && !dir.empty() ? (std::filesystem::path(dir) / p).string() : scene;
-    if (!std::filesystem::exists(s.scene_path)) fail("scene", "cannot find '" + s.scene_path + "'");
+    std::error_code ec;  // a name too long for the file system is an error code, not an abort
+    if (!std::filesystem::is_regular_file(s.scene_path, ec))
+      fail("scene", "cannot find the file '" + io::printable(s.scene_path) + "'" + (ec ? " (" + ec.message() + ")" : ""));
     if (const YAML::Node n = root["settings"])
       for (const std::string& key : map_keys(n, "settings")) s.settings.emplace_back(key, YAML::Dump(n[key]));
     const YAML::Node params = required(root, "", "parameters", "list the scene values to fit");
@@ -58,6 +61,19 @@ class StudyReader : public io::YamlChecks {
   }
 
  private:
+  // Study numbers stay within +-1e12 and sigmas above 1e-12, so that a residual squared
+  // (|value| / sigma)^2 <= 4e48 stays far from overflow: 1e308 or a denormal sigma once
+  // took the Ceres fit to an error and the run to a segfault.
+  static constexpr double kLargest = 1e12, kSmallest = 1e-12;
+  double bounded(const YAML::Node& n, const std::string& path) const {
+    const double v = number(n, path);
+    if (!(std::abs(v) <= kLargest)) fail(path, "is " + fmt(v) + "; must be within +-1e12");
+    return v;
+  }
+  double bounded(const YAML::Node& map, const std::string& path, const char* key, const char* hint) const {
+    return bounded(required(map, path, key, hint), join(path, key));
+  }
+
   Parameter parameter(const YAML::Node& n, const std::string& path) const {
     Parameter q;
     q.name = text(required(n, path, "name", "give the parameter a name"), join(path, "name"));
@@ -69,16 +85,16 @@ class StudyReader : public io::YamlChecks {
       if (levels.size() == 0) fail(join(path, "levels"), "the list is empty; give at least one level");
       std::set<double> seen;
       for (size_t k = 0; k < levels.size(); ++k) {
-        q.levels.push_back(number(levels[k], indexed(join(path, "levels"), k)));
+        q.levels.push_back(bounded(levels[k], indexed(join(path, "levels"), k)));
         if (!seen.insert(q.levels.back()).second) fail(indexed(join(path, "levels"), k), "repeats a level");
       }
       return q;
     }
     check_keys(n, path, {"name", "key", "lower", "upper", "start", "resolution", "levels"});
-    q.lower = req_number(n, path, "lower", "give the lower bound");
-    q.upper = req_number(n, path, "upper", "give the upper bound");
-    q.start = req_number(n, path, "start", "give the first guess");
-    q.resolution = req_number(n, path, "resolution", "give the smallest change that matters");
+    q.lower = bounded(n, path, "lower", "give the lower bound");
+    q.upper = bounded(n, path, "upper", "give the upper bound");
+    q.start = bounded(n, path, "start", "give the first guess");
+    q.resolution = bounded(n, path, "resolution", "give the smallest change that matters");
     if (!(q.lower < q.upper))
       fail(join(path, "upper"), "is " + fmt(q.upper) + ", not above lower " + fmt(q.lower) + "; the bounds are impossible");
     if (q.start < q.lower || q.start > q.upper)
@@ -86,6 +102,9 @@ class StudyReader : public io::YamlChecks {
     if (!(q.resolution > 0.0)) fail(join(path, "resolution"), "is " + fmt(q.resolution) + "; must be > 0");
     if (q.resolution >= q.upper - q.lower)
       fail(join(path, "resolution"), "is not smaller than upper - lower; nothing left to search");
+    // Finite differences of the forward model at a relative 1e-9 of the range are round-off.
+    if (q.resolution < 1e-9 * (q.upper - q.lower))
+      fail(join(path, "resolution"), "is " + fmt(q.resolution) + ", below 1e-9 x (upper - lower); no change that small matters");
     return q;
   }
 
@@ -112,9 +131,9 @@ class StudyReader : public io::YamlChecks {
       for (const std::string& q : qs) all += (all.empty() ? "" : ", ") + q;
       fail(join(path, "quantity"), "unknown quantity '" + o.quantity + "'; known: " + all);
     }
-    o.value = req_number(n, path, "value", "give the observed value");
-    o.sigma = req_number(n, path, "sigma", "give the observation's standard deviation");
-    if (!(o.sigma > 0.0)) fail(join(path, "sigma"), "is " + fmt(o.sigma) + "; must be > 0");
+    o.value = bounded(n, path, "value", "give the observed value");
+    o.sigma = bounded(n, path, "sigma", "give the observation's standard deviation");
+    if (!(o.sigma >= kSmallest)) fail(join(path, "sigma"), "is " + fmt(o.sigma) + "; must be >= 1e-12");
     if (const YAML::Node k = n["kind"]) {
       const std::string kind = text(k, join(path, "kind"));
       if (kind == "equal") o.kind = ObservationKind::Equal;
@@ -196,12 +215,14 @@ class StudyReader : public io::YamlChecks {
 }  // namespace
 
 Study read_study(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream text;
-  if (in) text << in.rdbuf();
-  if (!in) throw StudyError(path + ": cannot read the file");
+  std::string problem;
+  const std::string text = io::read_input_file(path, problem);
+  if (!problem.empty()) throw StudyError(problem);
   try {
-    const YAML::Node root = YAML::Load(text.str());
+    if (io::yaml_document_count(text) > 1)
+      throw StudyError(path + ": (top level): the file holds more than one YAML document (a '---' line starts "
+                       "another, and everything after it would be ignored); keep one");
+    const YAML::Node root = YAML::Load(text);
     return StudyReader(path).read(root, std::filesystem::path(path).parent_path().string());
   } catch (const io::SceneReadError& e) {
     throw StudyError(e.what());

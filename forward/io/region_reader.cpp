@@ -1,4 +1,5 @@
 #include "forward/io/region_reader.hpp"
+#include "forward/io/text_input.hpp"
 
 #include <cmath>
 #include <filesystem>
@@ -46,8 +47,9 @@ std::string resolve(const std::string& base_dir, const std::string& file) {
 }  // namespace
 
 std::vector<Vec2> read_polyline_csv(const YamlChecks& checks, const std::string& path, const std::string& key) {
-  std::ifstream in(path);
-  if (!in) checks.fail(key, "cannot read '" + path + "'");
+  std::string problem;
+  std::istringstream in(read_input_file(path, problem));
+  if (!problem.empty()) checks.fail(key, problem);
   std::vector<Vec2> line;
   std::string row;
   bool header_allowed = true;  // one line of column names before the first point
@@ -75,11 +77,10 @@ void read_regions(const YamlChecks& c, const YAML::Node& mesh, const YAML::Node&
                   const std::string& base_dir, Scene& s) {
   if (mesh) {
     c.check_keys(mesh, "mesh", {"block_size", "min_area_ratio", "min_angle", "min_edge_ratio"});
-    c.opt_number(mesh, "mesh", "block_size", s.mesh.block_size);
+    if (const YAML::Node n = mesh["block_size"]) s.mesh.block_size = c.length(n, "mesh.block_size");
     c.opt_number(mesh, "mesh", "min_area_ratio", s.mesh.min_area_ratio);
     c.opt_number(mesh, "mesh", "min_angle", s.mesh.min_angle);
     c.opt_number(mesh, "mesh", "min_edge_ratio", s.mesh.min_edge_ratio);
-    if (!(s.mesh.block_size >= 0.0)) c.fail("mesh.block_size", "must be > 0 m");
     if (!(s.mesh.min_area_ratio >= 0.0 && s.mesh.min_area_ratio < 1.0)) c.fail("mesh.min_area_ratio", "must be in [0, 1)");
     if (!(s.mesh.min_angle >= 0.0 && s.mesh.min_angle < 60.0)) c.fail("mesh.min_angle", "must be in [0, 60) degrees");
     if (!(s.mesh.min_edge_ratio >= 0.0 && s.mesh.min_edge_ratio < 0.5)) c.fail("mesh.min_edge_ratio", "must be in [0, 0.5)");
@@ -97,7 +98,7 @@ void read_regions(const YamlChecks& c, const YAML::Node& mesh, const YAML::Node&
     region.material = c.find(s.materials, c.text(c.required(r, path, "material", "name a material"), path + ".material"),
                              path + ".material", "material");
     if (const YAML::Node f = r["fixed"]) region.fixed = c.scalar<bool>(f, path + ".fixed", "true or false");
-    c.opt_number(r, path, "block_size", region.block_size);
+    if (const YAML::Node n = r["block_size"]) region.block_size = c.length(n, path + ".block_size");
     const int shapes = (r["polygon"] ? 1 : 0) + (r["between"] ? 1 : 0) + (r["below"] ? 1 : 0);
     if (shapes != 1) c.fail(path, "give exactly one of polygon, between or below");
     if (const YAML::Node p = r["polygon"]) {
@@ -139,7 +140,7 @@ void read_regions(const YamlChecks& c, const YAML::Node& mesh, const YAML::Node&
         c.check_keys(sets[q], jp, {"dip", "parallel_to", "spacing", "spacing_ratio", "offset"});
         JointSet set;
         c.opt_number(sets[q], jp, "dip", set.dip);
-        c.opt_number(sets[q], jp, "spacing", set.spacing);
+        if (const YAML::Node n = sets[q]["spacing"]) set.spacing = c.length(n, jp + ".spacing");
         c.opt_number(sets[q], jp, "spacing_ratio", set.spacing_ratio);
         c.opt_number(sets[q], jp, "offset", set.offset);
         if (const YAML::Node pt = sets[q]["parallel_to"]) {
@@ -147,9 +148,8 @@ void read_regions(const YamlChecks& c, const YAML::Node& mesh, const YAML::Node&
           set.parallel_to = read_polyline_csv(c, resolve(base_dir, c.text(pt, jp + ".parallel_to")), jp + ".parallel_to");
         }
         if (!(set.dip >= 0.0 && set.dip <= 180.0)) c.fail(jp + ".dip", "must be in [0, 180] degrees");
-        if (sets[q]["spacing"] && !(set.spacing > 0.0)) c.fail(jp + ".spacing", "must be > 0 m");
-        if (!(set.spacing_ratio > 0.0)) c.fail(jp + ".spacing_ratio", "must be > 0");
-        if (!std::isfinite(set.offset)) c.fail(jp + ".offset", "must be a finite number");
+        if (!(set.spacing_ratio > 0.0 && set.spacing_ratio <= 1e3)) c.fail(jp + ".spacing_ratio", "must be in (0, 1000]");
+        if (!(std::abs(set.offset) <= YamlChecks::kMaxLength)) c.fail(jp + ".offset", "must be within +-1e6 m");
         region.joint_sets.push_back(set);
       }
     }

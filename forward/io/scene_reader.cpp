@@ -2,6 +2,7 @@
 // scene_to_yaml(), is in scene_writer.cpp.
 #include "forward/io/scene_reader.hpp"
 #include "forward/io/region_reader.hpp"
+#include "forward/io/text_input.hpp"
 #include "forward/io/yaml_checks.hpp"
 #include "forward/mesh/region.hpp"
 
@@ -232,6 +233,9 @@ YAML::Node load_tree(const std::string& yaml_text, const std::string& file_label
                      int depth) {
   YAML::Node root;
   try {
+    if (yaml_document_count(yaml_text) > 1)
+      throw SceneReadError(file_label + ": (top level): the file holds more than one YAML document (a '---' line "
+                           "starts another, and everything after it would be ignored); keep one");
     root = YAML::Load(yaml_text);
   } catch (const YAML::Exception& e) {
     throw SceneReadError(yaml_error(file_label, e, "malformed YAML: "));
@@ -241,11 +245,10 @@ YAML::Node load_tree(const std::string& yaml_text, const std::string& file_label
   if (!root["base"].IsScalar()) throw SceneReadError(file_label + ": base: expected a scene file name");
   std::filesystem::path base_path(root["base"].Scalar());
   if (base_path.is_relative() && !base_dir.empty()) base_path = std::filesystem::path(base_dir) / base_path;
-  std::ifstream in(base_path);
-  std::ostringstream text;
-  if (in) text << in.rdbuf();
-  if (!in) throw SceneReadError(file_label + ": base: cannot read '" + base_path.string() + "'");
-  YAML::Node merged = load_tree(text.str(), base_path.string(), base_path.parent_path().string(), depth + 1);
+  std::string problem;
+  const std::string text = read_input_file(base_path.string(), problem);
+  if (!problem.empty()) throw SceneReadError(file_label + ": base: " + problem);
+  YAML::Node merged = load_tree(text, base_path.string(), base_path.parent_path().string(), depth + 1);
   root.remove("base");
   merge_into(merged, root);
   return merged;
@@ -301,11 +304,10 @@ Scene parse_scene(const std::string& yaml_text, const std::string& file_label, c
 }
 
 Scene read_scene(const std::string& path, const std::vector<std::pair<std::string, std::string>>& overrides) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream text;
-  if (in) text << in.rdbuf();
-  if (!in) throw SceneReadError(path + ": cannot read the file: " + std::strerror(errno));
-  return parse_scene(text.str(), path, std::filesystem::path(path).parent_path().string(), overrides);
+  std::string problem;
+  const std::string text = read_input_file(path, problem);
+  if (!problem.empty()) throw SceneReadError(problem);
+  return parse_scene(text, path, std::filesystem::path(path).parent_path().string(), overrides);
 }
 
 }  // namespace ddafit::io

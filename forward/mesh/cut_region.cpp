@@ -8,6 +8,7 @@
 #include <CGAL/Exact_predicates_exact_constructions_kernel.h>
 
 #include <algorithm>
+#include <cstdio>
 #include <limits>
 #include <cmath>
 #include <optional>
@@ -234,9 +235,14 @@ std::vector<std::vector<Vec2>> cut_region(const RegionInput& region, const MeshS
     densest += 1.0 / spacing;
   }
   if (densest * densest * region_area > kMaxBlocksPerRegion) {
-    problem = "joint spacings would cut the region into about " +
-              std::to_string(static_cast<long>(densest * densest * region_area)) +
-              " blocks; raise the spacings or block_size";
+    const double blocks = densest * densest * region_area;
+    char count[48];
+    if (blocks < 1e15)
+      std::snprintf(count, sizeof count, "about %.2g", blocks);
+    else
+      std::snprintf(count, sizeof count, "more than 1e15");  // an infinite count says no more
+    problem = std::string("joint spacings would cut the region into ") + count + " blocks (at most " +
+              std::to_string(static_cast<long>(kMaxBlocksPerRegion)) + "); raise the spacings or block_size";
     return {};
   }
   for (const JointSet& set : region.joint_sets)
