@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 #include <map>
 #include <set>
 #include <string>
@@ -23,6 +24,14 @@ std::string num(double v) {
   char buf[32];
   const auto res = std::to_chars(buf, buf + sizeof buf, v);
   return std::string(buf, res.ptr);
+}
+
+// Three significant digits, for counts the code derived (steps, rows), not values the
+// user typed.
+std::string approx(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.3g", v);
+  return buf;
 }
 
 bool finite(double v) { return std::isfinite(v); }
@@ -156,6 +165,9 @@ std::vector<std::pair<int, int>> box_pairs(const std::vector<Box>& boxes,
 }
 
 bool positive(double v) { return v > 0 && std::isfinite(v); }
+
+constexpr double kMaxSteps = 1e8;         // ~30 h of wall even at 1 ms a step
+constexpr double kMaxHistoryRows = 1e7;   // ~700 MB of history.csv
 bool non_negative(double v) { return v >= 0 && std::isfinite(v); }
 
 // Appends "KEY: is VALUE; RULE" unless the value passed its check.
@@ -173,6 +185,24 @@ void check_settings(const Scene& scene, std::vector<SceneError>& errors) {
   expect(non_negative(scene.output_interval), "output.interval", scene.output_interval,
          "must be >= 0 (0 = every step)", errors);
   expect(positive(scene.rest_speed), "rest_speed", scene.rest_speed, "must be > 0 m/s", errors);
+  // A run must end and its output must fit: the steps it takes at the largest step and the
+  // history rows it writes are bounded (an output interval of 1e-14 s once stalled at 0 %
+  // forever, and a step of 1e-300 s ran without end).
+  if (positive(scene.duration) && scene.max_step > 0) {
+    const double steps = scene.duration / scene.max_step;
+    if (steps > kMaxSteps)
+      errors.push_back({"time.step", "is " + num(scene.max_step) + " s: time.duration / time.step = " + approx(steps) +
+                                         " steps, more than the " + approx(kMaxSteps) +
+                                         " a run may take; raise time.step or shorten time.duration"});
+    const double interval = scene.output_interval > 0 ? scene.output_interval : scene.max_step;
+    const double points = static_cast<double>(std::max<size_t>(1, scene.measure.size()));
+    const double rows = (scene.duration / interval + 1.0) * points;
+    if (steps <= kMaxSteps && rows > kMaxHistoryRows)
+      errors.push_back({scene.output_interval > 0 ? "output.interval" : "time.step",
+                        "would write " + approx(rows) + " history rows (" + approx(points) + " points over " +
+                            num(scene.duration) + " s), more than the " + approx(kMaxHistoryRows) +
+                            " a run may write; raise output.interval"});
+  }
   const std::string bad = validate_options(scene.options);
   if (!bad.empty()) {
     const size_t colon = bad.find(": ");
