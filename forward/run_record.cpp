@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 namespace ddafit {
 
@@ -69,6 +70,18 @@ void RunRecorder::record(double time, const BlockSystem& s) {
     hooks_.on_progress(time, scene_.duration);
     last_progress_ = now;
   }
+}
+
+bool RunRecorder::interrupted(double time, const BlockSystem& s) {
+  if (!hooks_.should_stop || !hooks_.should_stop()) return false;
+  SimulationSummary& summary = result_.summary;
+  summary.status = RunStatus::Interrupted;
+  char text[96];
+  std::snprintf(text, sizeof text, "interrupted at t = %.4g s of %.4g s", time, scene_.duration);
+  summary.message = text;
+  summary.run.simulated_time = time;
+  if (result_.history.empty() || result_.history.back().time < time) record_row(time, s);
+  return true;
 }
 
 }  // namespace ddafit

@@ -32,6 +32,10 @@ class RunRecorder {
 
   bool finished(double time) const { return time >= scene_.duration - end_slack_; }
 
+  // Whether the caller asked the run to stop (SimulationHooks::should_stop). If so, the
+  // summary says Interrupted at `time` and the history ends with a row there.
+  bool interrupted(double time, const BlockSystem& system);
+
  private:
   const Scene& scene_;
   const SimulationHooks& hooks_;

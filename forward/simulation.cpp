@@ -67,7 +67,11 @@ SolverReport choose_solver(const Scene& scene, const BlockSystem& s) {
 
 // Settings that only one solver reads, set away from their defaults under the other:
 // said, never silently ignored.
-std::vector<std::string> unused_setting_warnings(const SimulationOptions& o, Integrator running) {
+// Under time.integrator: auto a scene may carry both solvers' settings on purpose (the
+// Vajont scenes run either way with mesh.block_size); the message then says why these
+// are not used here rather than suggesting a mistake.
+std::vector<std::string> unused_setting_warnings(const SimulationOptions& o, const SolverReport& solver) {
+  const Integrator running = solver.integrator;
   const SimulationOptions d;
   std::vector<std::string> unused;
   if (running == Integrator::Substep) {
@@ -88,6 +92,10 @@ std::vector<std::string> unused_setting_warnings(const SimulationOptions& o, Int
   if (unused.empty()) return {};
   std::string list;
   for (const std::string& key : unused) list += (list.empty() ? "" : ", ") + key;
+  if (o.integrator == Integrator::Auto)
+    return {list + (unused.size() == 1 ? " is a setting" : " are settings") + " of the other solver, kept for when "
+            "time.integrator: auto picks it; here it picked the " + to_string(running) + " solver (" + solver.reason +
+            "), so " + (unused.size() == 1 ? "it is" : "they are") + " not used"};
   return {list + (unused.size() == 1 ? " is" : " are") + " not used by the " + to_string(running) +
           " solver (docs/scene-format.md)"};
 }
@@ -109,7 +117,7 @@ SimulationResult simulate(const Scene& scene, const SimulationHooks& hooks) {
 
   BlockSystem system = build_block_system(scene);
   summary.solver = choose_solver(scene, system);
-  for (std::string& w : unused_setting_warnings(scene.options, summary.solver.integrator))
+  for (std::string& w : unused_setting_warnings(scene.options, summary.solver))
     summary.warnings.push_back(std::move(w));
   RunRecorder recorder(scene, hooks, result);
   if (summary.solver.integrator == Integrator::Substep) {

@@ -58,7 +58,9 @@ struct SolverReport {
   long fast_steps = 0;          // steps in which a block moved further than the contact margin allows
 };
 
-enum class RunStatus { Completed, InvalidScene, Failed };
+// Interrupted: the caller asked the run to stop (SimulationHooks::should_stop) before the
+// end; the history and extremes up to that time are kept.
+enum class RunStatus { Completed, InvalidScene, Failed, Interrupted };
 
 struct SimulationSummary {
   RunStatus status = RunStatus::Completed;
@@ -81,6 +83,9 @@ struct SimulationHooks {
   std::function<void(double time, const BlockSystem& system)> on_output;
   // Called about once per second of wall time with the simulated time reached.
   std::function<void(double time, double duration)> on_progress;
+  // Asked once per step; true stops the run there with status Interrupted (the command
+  // line sets it on SIGINT and SIGTERM).
+  std::function<bool()> should_stop;
 };
 
 SimulationResult simulate(const Scene& scene, const SimulationHooks& hooks = {});

@@ -9,42 +9,13 @@
 #include <sstream>
 #include <string>
 
+#include "tests/cli_run.hpp"
+
 namespace {
 
 namespace fs = std::filesystem;
 
-struct CommandResult {
-  int code = -1;
-  std::string out, err;
-};
-
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-CommandResult ddafit(const std::string& args, const std::string& tag) {
-  const fs::path dir = fs::path(DDAFIT_TEST_TMP) / tag;
-  fs::create_directories(dir);
-  const std::string cmd = std::string(DDAFIT_BINARY) + " " + args + " > " + (dir / "stdout").string() + " 2> " +
-                          (dir / "stderr").string();
-  const int status = std::system(cmd.c_str());
-  CommandResult r;
-  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  r.out = slurp(dir / "stdout");
-  r.err = slurp(dir / "stderr");
-  return r;
-}
-
-fs::path write_scene(const std::string& tag, const std::string& text) {
-  const fs::path dir = fs::path(DDAFIT_TEST_TMP) / tag;
-  fs::create_directories(dir);
-  const fs::path p = dir / "scene.yaml";
-  std::ofstream(p) << text;
-  return p;
-}
+using namespace ddafit_test;
 
 const std::string kIncline = std::string(DDAFIT_CASES_DIR) + "/verification/incline_i5.yaml";
 

@@ -14,6 +14,7 @@
 
 #include "apps/ddafit/commands.hpp"
 #include "apps/ddafit/exit_codes.hpp"
+#include "apps/ddafit/output_files.hpp"
 #include "apps/ddafit/plots.hpp"
 #include "apps/ddafit/vtk_reader.hpp"
 
@@ -114,12 +115,11 @@ int run_animate(const AnimateArgs& args) {
   top_speed = std::ceil(top_speed);
 
   const fs::path out = args.out.empty() ? dir / "animation" : fs::path(args.out);
-  std::error_code ec;
-  fs::create_directories(out, ec);
-  if (ec) {
-    std::cerr << out.string() << ": cannot create the output folder: " << ec.message() << "\n";
+  if (const std::string problem = prepare_output_folder(out.string()); !problem.empty()) {
+    std::cerr << problem << "\n";
     return kExitBadInput;
   }
+  std::error_code ec;
   const fs::path data = out / "data";
   fs::create_directories(data, ec);
   const double aspect = (y1 - y0) / std::max(x1 - x0, 1e-9);

@@ -12,6 +12,7 @@
 
 #include "apps/ddafit/commands.hpp"
 #include "apps/ddafit/exit_codes.hpp"
+#include "apps/ddafit/output_files.hpp"
 #include "apps/ddafit/plots.hpp"
 #include "forward/simulation.hpp"
 
@@ -54,10 +55,8 @@ int run_bench(const BenchArgs& args) {
     std::cerr << "ddafit bench: need at least one --sizes value and a positive --duration\n";
     return kExitBadInput;
   }
-  std::error_code ec;
-  std::filesystem::create_directories(args.out, ec);
-  if (ec) {
-    std::cerr << "ddafit bench: --out: cannot create '" << args.out << "': " << ec.message() << "\n";
+  if (const std::string problem = prepare_output_folder(args.out); !problem.empty()) {
+    std::cerr << problem << "\n";
     return kExitBadInput;
   }
   std::vector<BenchRow> rows;

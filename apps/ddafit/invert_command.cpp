@@ -10,6 +10,8 @@
 #include "forward/model_revision.hpp"
 #include "apps/ddafit/commands.hpp"
 #include "apps/ddafit/exit_codes.hpp"
+#include "apps/ddafit/interrupt.hpp"
+#include "apps/ddafit/output_files.hpp"
 #include "inverse/evaluation_cache.hpp"
 #include "inverse/forward_call.hpp"
 #include "inverse/inversion.hpp"
@@ -19,11 +21,6 @@
 namespace ddafit::app {
 
 namespace {
-
-std::string clock_text(double seconds) {
-  const long s = static_cast<long>(seconds + 0.5);
-  return s >= 3600 ? fmt::format("{}h{:02d}m", s / 3600, (s % 3600) / 60) : fmt::format("{}m{:02d}s", s / 60, s % 60);
-}
 
 // The plan of --check: what would run, without running it.
 void print_plan(const inverse::Study& study, int budget, const std::string& out) {
@@ -83,6 +80,10 @@ int run_invert(const InvertArgs& args) {
     print_plan(study, budget, args.out);
     return kExitSuccess;
   }
+  if (const std::string problem = prepare_output_folder(args.out); !problem.empty()) {
+    std::cerr << problem << "\n";
+    return kExitBadInput;
+  }
   inverse::InversionOptions options;
   options.out_dir = args.out;
   options.resume = args.resume;
@@ -104,6 +105,8 @@ int run_invert(const InvertArgs& args) {
   options.on_log = [quiet = args.quiet](const std::string& line) {
     if (!quiet) std::cerr << "\n  note: " << line << "\n";
   };
+  exit_on_stop_signals("ddafit invert: interrupted; every finished forward run is kept in " + args.out +
+                       "/evaluations.sqlite: run the same command with --resume to go on from there\n");
   inverse::InversionSummary summary;
   try {
     summary = inverse::run_inversion(study, options);
@@ -154,6 +157,12 @@ int run_scan(const ScanArgs& args) {
   options.resume = args.resume;
   options.model_version = std::string(DDAFIT_VERSION) + "+" + kModelRevision;
   options.on_log = [](const std::string& line) { std::cerr << "note: " << line << "\n"; };
+  if (const std::string problem = prepare_output_folder(args.out); !problem.empty()) {
+    std::cerr << problem << "\n";
+    return kExitBadInput;
+  }
+  exit_on_stop_signals("ddafit scan: interrupted; every finished forward run is kept in " + args.out +
+                       "/evaluations.sqlite: run the same command with --resume to go on from there\n");
   inverse::ScanResult scan;
   try {
     scan = inverse::run_scan(study, options, args.parameter, args.points);

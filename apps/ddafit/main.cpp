@@ -1,11 +1,60 @@
 // ddafit: back-analysis of rapid landslides with DDA. This file only parses arguments
 // and hands over to one function per subcommand.
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <iostream>
+#include <string>
+#include <vector>
 
 #include "apps/ddafit/commands.hpp"
 #include "apps/ddafit/exit_codes.hpp"
 #include "apps/ddafit/thread_budget.hpp"
+
+namespace {
+
+// "; did you mean 'NAME'?" for the name within three edits of `typed`, else "".
+std::string did_you_mean(const std::string& typed, const std::vector<std::string>& names) {
+  std::string best;
+  size_t best_distance = 4;
+  for (const std::string& name : names) {
+    // Levenshtein distance, one row at a time.
+    std::vector<size_t> row(name.size() + 1);
+    for (size_t j = 0; j <= name.size(); ++j) row[j] = j;
+    for (size_t i = 1; i <= typed.size(); ++i) {
+      size_t diagonal = row[0];
+      row[0] = i;
+      for (size_t j = 1; j <= name.size(); ++j) {
+        const size_t above = row[j];
+        row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (typed[i - 1] == name[j - 1] ? 0 : 1)});
+        diagonal = above;
+      }
+    }
+    if (row[name.size()] < best_distance) best_distance = row[name.size()], best = name;
+  }
+  return best.empty() ? "" : "; did you mean '" + best + "'?";
+}
+
+// A number option in [low, high], with a message in the user's terms (CLI11's own range
+// check printed its bounds with six decimals, the largest double as 309 digits).
+CLI::Validator within(double low, double high) {
+  return CLI::Validator(
+      [low, high](std::string& text) -> std::string {
+        double v = 0.0;
+        try {
+          size_t used = 0;
+          v = std::stod(text, &used);
+          if (used != text.size()) return "expected a number, got '" + text + "'";
+        } catch (const std::exception&) {
+          return "expected a number, got '" + text + "'";
+        }
+        if (!(v >= low && v <= high))
+          return "is " + text + "; must be in [" + CLI::detail::to_string(low) + ", " + CLI::detail::to_string(high) + "]";
+        return {};
+      },
+      "in [" + CLI::detail::to_string(low) + ", " + CLI::detail::to_string(high) + "]");
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   using namespace ddafit::app;
@@ -20,7 +69,7 @@ int main(int argc, char** argv) {
   simulate->add_option("--set", sim.sets, "override a scene value, KEY=VALUE (repeatable)");
   simulate->add_flag("--quiet", sim.quiet, "print nothing but errors");
   simulate->add_option("--vtk-interval", sim.vtk_interval, "write DIR/vtk/blocks_NNNNN.vtk every this many s")
-      ->check(CLI::NonNegativeNumber);
+      ->check(within(0.0, 1e6));
   simulate->add_flag("--plots", sim.plots, "draw distance/velocity charts (PNG, needs gnuplot)");
 
   MeshArgs mesh;
@@ -39,12 +88,15 @@ int main(int argc, char** argv) {
   CLI::App* stable = app.add_subcommand("stable", "bisect an interface's friction angle for the stable state");
   stable->add_option("scene", st.scene, "scene file (YAML)")->required();
   stable->add_option("--interface", st.interface, "interface whose friction angle is searched")->required();
-  stable->add_option("--low", st.options.low, "deg, a value that slides")->capture_default_str();
-  stable->add_option("--high", st.options.high, "deg, a value that holds")->capture_default_str();
-  stable->add_option("--tolerance", st.options.tolerance, "deg, width of the final bracket")->capture_default_str();
-  stable->add_option("--time", st.options.trial_duration, "s simulated per trial")->capture_default_str();
+  stable->add_option("--low", st.options.low, "deg, a value that slides")->capture_default_str()->check(within(0.0, 90.0));
+  stable->add_option("--high", st.options.high, "deg, a value that holds")->capture_default_str()->check(within(0.0, 90.0));
+  stable->add_option("--tolerance", st.options.tolerance, "deg, width of the final bracket")
+      ->capture_default_str()
+      ->check(within(1e-6, 90.0));
+  stable->add_option("--time", st.options.trial_duration, "s simulated per trial")->capture_default_str()->check(within(1e-6, 1e4));
   stable->add_option("--movement", st.options.max_movement, "m a point may move and still count as stable")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(within(1e-9, 1e6));
   stable->add_option("--out", st.out, "output folder for stable.json")->capture_default_str();
   stable->add_option("--set", st.sets, "override a scene value, KEY=VALUE (repeatable)");
 
@@ -72,9 +124,9 @@ int main(int argc, char** argv) {
   animate->add_option("--out", an.out, "output folder (default: DIR/animation)");
   animate->add_option("--times", an.times, "also draw speed_tT.png at these times, s (e.g. 1,10,20,30,35)")
       ->delimiter(',');
-  animate->add_option("--fps", an.fps, "frames per second")->capture_default_str()->check(CLI::Range(0.1, 100.0));
+  animate->add_option("--fps", an.fps, "frames per second")->capture_default_str()->check(within(0.1, 100.0));
   animate->add_option("--max-speed", an.max_speed, "m/s at the top of the colour bar (default: the fastest block)")
-      ->check(CLI::Range(0.0, 1e6));
+      ->check(within(0.0, 1e6));
   animate->add_flag("--mp4", an.mp4, "also write animation.mp4 (needs ffmpeg)");
 
   VerifyArgs ver;
@@ -109,18 +161,33 @@ int main(int argc, char** argv) {
   } catch (const CLI::CallForVersion& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
+    // A mistyped subcommand ("simulat") reads as a missing one to CLI11; name the nearest.
+    std::vector<std::string> names;
+    for (const CLI::App* command : app.get_subcommands({})) names.push_back(command->get_name());
+    if (argc > 1 && argv[1][0] != '-' && std::find(names.begin(), names.end(), argv[1]) == names.end()) {
+      std::cerr << "ddafit: unknown command '" << argv[1] << "'" << did_you_mean(argv[1], names)
+                << "; commands: " << CLI::detail::join(names, ", ") << " (ddafit --help)\n";
+      return kExitBadInput;
+    }
     std::cerr << "ddafit: " << e.what() << " (ddafit --help)\n";
     return kExitBadInput;
   }
   set_thread_budget(threads);
-  if (*simulate) return run_simulate(sim);
-  if (*verify) return run_verify(ver);
-  if (*mesh_cmd) return run_mesh(mesh);
-  if (*stable) return run_stable(st);
-  if (*bench) return run_bench(be);
-  if (*plot) return run_plot(pl);
-  if (*invert) return run_invert(inv);
-  if (*scan) return run_scan(sc);
-  if (*animate) return run_animate(an);
+  // Each command reports its own errors in one line; this is the net under them, so that
+  // an error nobody foresaw still ends as a message and exit 2, never as an abort.
+  try {
+    if (*simulate) return run_simulate(sim);
+    if (*verify) return run_verify(ver);
+    if (*mesh_cmd) return run_mesh(mesh);
+    if (*stable) return run_stable(st);
+    if (*bench) return run_bench(be);
+    if (*plot) return run_plot(pl);
+    if (*invert) return run_invert(inv);
+    if (*scan) return run_scan(sc);
+    if (*animate) return run_animate(an);
+  } catch (const std::exception& e) {
+    std::cerr << "ddafit " << app.get_subcommands().front()->get_name() << ": unexpected error: " << e.what()
+              << " (please report it with the input that caused it)\n";
+  }
   return kExitBadInput;
 }

@@ -7,6 +7,7 @@
 
 #include "apps/ddafit/commands.hpp"
 #include "apps/ddafit/exit_codes.hpp"
+#include "apps/ddafit/output_files.hpp"
 #include "apps/ddafit/plots.hpp"
 #include "apps/ddafit/vtk_writer.hpp"
 #include "forward/io/scene_reader.hpp"
@@ -24,10 +25,8 @@ int run_mesh(const MeshArgs& args) {
     std::cerr << args.scene << ": " << problem << "\n";
     return kExitBadInput;
   }
-  std::error_code ec;
-  std::filesystem::create_directories(args.out, ec);
-  if (ec) {
-    std::cerr << args.out << ": --out: cannot create the folder (" << ec.message() << ")\n";
+  if (const std::string problem = prepare_output_folder(args.out); !problem.empty()) {
+    std::cerr << problem << "\n";
     return kExitBadInput;
   }
   const std::filesystem::path dir(args.out);
@@ -65,6 +64,31 @@ int run_plot(const PlotArgs& args) {
   if (!load_scene(args.scene, args.sets, scene)) return kExitBadInput;
   if (!std::filesystem::exists(std::filesystem::path(args.dir) / "history.csv")) {
     std::cerr << args.dir << ": no history.csv here (run ddafit simulate first)\n";
+    return kExitBadInput;
+  }
+  // The charts pick rows by point name; a history written by another scene would be drawn
+  // under the wrong labels, so the run's points must be the scene's, in the same order.
+  std::ifstream history(std::filesystem::path(args.dir) / "history.csv");
+  std::vector<std::string> run_points;
+  std::string line, first_time;
+  std::getline(history, line);  // header
+  while (std::getline(history, line)) {
+    const auto c1 = line.find(','), c2 = line.find(',', c1 + 1);
+    if (c1 == std::string::npos || c2 == std::string::npos) break;
+    if (first_time.empty()) first_time = line.substr(0, c1);
+    if (line.compare(0, c1, first_time) != 0) break;
+    run_points.push_back(line.substr(c1 + 1, c2 - c1 - 1));
+  }
+  std::vector<std::string> scene_points;
+  for (const MeasurePoint& m : scene.measure) scene_points.push_back(m.name);
+  if (run_points != scene_points) {
+    const auto list = [](const std::vector<std::string>& v) {
+      std::string s;
+      for (const std::string& x : v) s += (s.empty() ? "" : ", ") + x;
+      return s.empty() ? std::string("none") : s;
+    };
+    std::cerr << args.dir << "/history.csv: its points (" << list(run_points) << ") are not the scene's measure points ("
+              << list(scene_points) << "): give the scene and --set values the run used\n";
     return kExitBadInput;
   }
   std::string reason;

@@ -4,11 +4,37 @@
 #include <fmt/os.h>
 
 #include <algorithm>
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 
 namespace ddafit::app {
+
+std::string clock_text(double seconds) {
+  const long s = static_cast<long>(std::max(seconds, 0.0) + 0.5);
+  return s >= 3600 ? fmt::format("{}h{:02d}m", s / 3600, (s % 3600) / 60) : fmt::format("{}m{:02d}s", s / 60, s % 60);
+}
+
+std::string prepare_output_folder(const std::string& out) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  fs::create_directories(out, ec);
+  if (ec) return out + ": --out: cannot create the folder (" + ec.message() + ")";
+  if (!fs::is_directory(out, ec)) return out + ": --out: not a folder";
+  // Permissions alone do not say it (root ignores them; a read-only mount does not):
+  // write a file and remove it.
+  const fs::path probe = fs::path(out) / ".ddafit-write-check";
+  {
+    std::ofstream file(probe);
+    file << "ok\n";
+    if (!file) return out + ": --out: cannot write in the folder (" + std::strerror(errno) + ")";
+  }
+  fs::remove(probe, ec);
+  return {};
+}
 
 void write_history_csv(const std::string& path, const Scene& scene, const SimulationResult& result) {
   auto out = fmt::output_file(path);
@@ -25,6 +51,7 @@ static const char* status_name(RunStatus s) {
     case RunStatus::Completed: return "completed";
     case RunStatus::InvalidScene: return "invalid_scene";
     case RunStatus::Failed: return "failed";
+    case RunStatus::Interrupted: return "interrupted";
   }
   return "unknown";
 }

@@ -1,10 +1,12 @@
 #include <fmt/format.h>
 
+#include <chrono>
 #include <filesystem>
 #include <iostream>
 
 #include "apps/ddafit/commands.hpp"
 #include "apps/ddafit/exit_codes.hpp"
+#include "apps/ddafit/interrupt.hpp"
 #include "apps/ddafit/output_files.hpp"
 #include "apps/ddafit/plots.hpp"
 #include "apps/ddafit/vtk_writer.hpp"
@@ -47,15 +49,26 @@ int run_simulate(const SimulateArgs& args) {
     setup.roughness_angle = 5.0;
     scene = verification::incline_scene(setup);
     label = "built-in incline (phi = 25 deg, i = 5 deg)";
+    if (!args.sets.empty()) {
+      // --set applies to the built-in scene as to a file: written out and read back with
+      // the overrides, so every value goes through the same checks.
+      std::vector<std::pair<std::string, std::string>> overrides;
+      if (!parse_overrides(args.sets, overrides)) return kExitBadInput;
+      try {
+        scene = io::parse_scene(io::scene_to_yaml(scene), "built-in incline", "", overrides);
+      } catch (const io::SceneReadError& e) {
+        std::cerr << e.what() << "\n";
+        return kExitBadInput;
+      }
+    }
   } else {
     if (!load_scene(args.scene, args.sets, scene)) return kExitBadInput;
   }
-  std::error_code ec;
-  std::filesystem::create_directories(args.out, ec);
-  if (ec) {
-    std::cerr << args.out << ": --out: cannot create the folder (" << ec.message() << ")\n";
+  if (const std::string problem = prepare_output_folder(args.out); !problem.empty()) {
+    std::cerr << problem << "\n";
     return kExitBadInput;
   }
+  std::error_code ec;
 
   SimulationHooks hooks;
   std::string vtk_problem;
@@ -73,13 +86,19 @@ int run_simulate(const SimulateArgs& args) {
     };
   }
   if (!args.quiet) {
-    hooks.on_progress = [](double t, double duration) {
-      std::cerr << fmt::format("\r  t = {:.3f} / {:.3f} s ({:.0f} %)", t, duration, 100.0 * t / duration)
+    hooks.on_progress = [start = std::chrono::steady_clock::now()](double t, double duration) {
+      const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      // Wall time per simulated second has been steady enough over a slide to extrapolate.
+      const std::string eta = t > 0.0 ? "ETA " + clock_text(wall * (duration - t) / t) : "";
+      std::cerr << fmt::format("\r  t = {:.3f} / {:.3f} s ({:.0f} %)  wall {}  {}   ", t, duration,
+                               100.0 * t / duration, clock_text(wall), eta)
                 << std::flush;
     };
   }
+  note_stop_signals();
+  hooks.should_stop = [] { return stop_signal() != 0; };
   const SimulationResult result = simulate(scene, hooks);
-  if (!args.quiet) std::cerr << "\r" << std::string(48, ' ') << "\r";
+  if (!args.quiet) std::cerr << "\r" << std::string(72, ' ') << "\r";
 
   const std::string history = (std::filesystem::path(args.out) / "history.csv").string();
   const std::string summary = (std::filesystem::path(args.out) / "summary.json").string();
@@ -100,6 +119,10 @@ int run_simulate(const SimulateArgs& args) {
   if (s.status == RunStatus::Failed) {
     std::cerr << label << ": simulation failed: " << s.message << "\n";
     return kExitRunFailed;
+  }
+  if (s.status == RunStatus::Interrupted) {
+    std::cerr << label << ": " << s.message << "; the history so far and the summary are in " << args.out << "\n";
+    return exit_code_for(stop_signal());
   }
   if (!vtk_problem.empty()) std::cerr << args.out << ": VTK snapshots stopped: " << vtk_problem << "\n";
   if (args.plots) {

@@ -7,6 +7,7 @@
 
 #include "apps/ddafit/commands.hpp"
 #include "apps/ddafit/exit_codes.hpp"
+#include "apps/ddafit/output_files.hpp"
 #include "forward/analysis/stable_friction.hpp"
 #include "forward/io/scene_reader.hpp"
 
@@ -26,6 +27,10 @@ int run_stable(const StableArgs& args) {
     std::cerr << "ddafit stable: need --low < --high and positive --tolerance, --time and --movement\n";
     return kExitBadInput;
   }
+  if (const std::string problem = prepare_output_folder(args.out); !problem.empty()) {
+    std::cerr << problem << "\n";
+    return kExitBadInput;
+  }
   std::cout << fmt::format("{:>10} {:>14} {:>8}\n", "phi (deg)", "movement (m)", "stable");
   const StableSearchResult r = find_stable_friction(scene, o, [](const StableTrial& t) {
     std::cout << fmt::format("{:>10.3f} {:>14.4f} {:>8}{}\n", t.friction_angle, t.movement, t.stable ? "yes" : "no",
@@ -40,8 +45,13 @@ int run_stable(const StableArgs& args) {
   j["high"] = r.high;
   for (const StableTrial& t : r.trials)
     j["trials"].push_back({{"friction_angle", t.friction_angle}, {"movement", t.movement}, {"stable", t.stable}});
-  std::filesystem::create_directories(args.out);
-  std::ofstream(std::filesystem::path(args.out) / "stable.json") << j.dump(2) << "\n";
+  const std::string json_path = (std::filesystem::path(args.out) / "stable.json").string();
+  std::ofstream json(json_path);
+  json << j.dump(2) << "\n";
+  if (!json) {
+    std::cerr << json_path << ": --out: cannot write the file\n";
+    return kExitBadInput;
+  }
   if (!r.bracketed) {
     std::cerr << args.scene << ": stable search: " << r.message << "\n";
     return kExitRunFailed;

@@ -100,7 +100,7 @@ void run_implicit(const Scene& scene, BlockSystem& system, RunRecorder& recorder
     summary.message = out.str();
   };
 
-  while (!recorder.finished(time)) {
+  while (!recorder.finished(time) && !recorder.interrupted(time, system)) {
     {
       ScopedTimer timer(profile.find_contacts);
       const std::string problem = find_contacts(system, search, contacts);

@@ -319,7 +319,7 @@ void run_substep(const Scene& scene, BlockSystem& s, RunRecorder& recorder, Simu
     recorder.record_row(time, s);
   };
 
-  while (!recorder.finished(time)) {
+  while (!recorder.finished(time) && !recorder.interrupted(time, s)) {
     mark_near(w, settings.margin, w.near);
     step = choose_step(s, w, scene, step, max_move);
     double landing = -1.0;
