@@ -184,7 +184,9 @@ std::string markdown(const Study& study, const InversionSummary& s) {
 }  // namespace
 
 std::vector<std::string> write_report(const std::string& dir, const Study& study, const InversionSummary& summary) {
-  std::filesystem::create_directories(dir);
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  if (ec) throw std::runtime_error(dir + ": cannot create the folder (" + ec.message() + ")");
   const std::filesystem::path d(dir);
   {
     std::ofstream out(d / "report.json");
