@@ -8,11 +8,13 @@
 #include <utility>
 #include <vector>
 
+#include "forward/io/scene_reader.hpp"
+
 namespace ddafit::inverse {
 
 // A study file that cannot be used. what() is one line, "FILE: KEY: PROBLEM".
 struct StudyError : std::runtime_error {
-  using std::runtime_error::runtime_error;
+  explicit StudyError(const std::string& message) : std::runtime_error(io::SceneReadError::one_line(message)) {}
 };
 
 // A scene value the search may change, set through the scene reader's overrides.

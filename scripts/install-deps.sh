@@ -16,6 +16,7 @@ packages=(
   libsqlite3-dev                 # the inversion's evaluation cache
   libbenchmark-dev               # bench/
   gnuplot-nox                    # PNG charts (ddafit mesh, simulate --plots)
+  clang libfuzzer-14-dev         # scripts/fuzz.sh: libFuzzer targets of the input readers
 )
 if [ "$(id -u)" -ne 0 ]; then sudo=sudo; else sudo=; fi
 $sudo apt-get update -qq

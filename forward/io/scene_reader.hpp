@@ -37,8 +37,15 @@ namespace ddafit::io {
 
 // A scene file that cannot be used. what() is one line, "FILE: KEY: PROBLEM", where KEY
 // names the entry in YAML terms (e.g. "blocks[3].polygon") and PROBLEM says what to do.
+// Control characters a file or a --set value smuggled into the message (a key named
+// "a\x01", a tab-laden value) are shown as '?', so the message stays one printable line.
 struct SceneReadError : std::runtime_error {
-  using std::runtime_error::runtime_error;
+  explicit SceneReadError(const std::string& message) : std::runtime_error(one_line(message)) {}
+  static std::string one_line(std::string text) {
+    for (char& c : text)
+      if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = '?';
+    return text;
+  }
 };
 
 // Key-value overrides applied to the file before it is read: {"interfaces.clay.

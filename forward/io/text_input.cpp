@@ -1,7 +1,5 @@
 #include "forward/io/text_input.hpp"
 
-#include <yaml-cpp/yaml.h>
-
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
@@ -40,10 +38,25 @@ std::string read_input_file(const std::string& path, std::string& problem, std::
 }
 
 int yaml_document_count(const std::string& text) {
-  int count = 0;
-  for (const YAML::Node& document : YAML::LoadAll(text))
-    if (document && !document.IsNull()) ++count;
-  return count;
+  int documents = 0;
+  bool content = false;  // the current document has something besides comments and blanks
+  const auto marker = [](const std::string& line, const char* m) {
+    return line.compare(0, 3, m) == 0 && (line.size() == 3 || line[3] == ' ' || line[3] == '\t' || line[3] == '\r');
+  };
+  std::istringstream lines(text);
+  for (std::string line; std::getline(lines, line);) {
+    if (marker(line, "---") || marker(line, "...")) {
+      if (content) ++documents;
+      content = false;
+      // "--- value" starts a document with content on the marker's own line.
+      const size_t rest = line.find_first_not_of(" \t\r", 3);
+      if (marker(line, "---") && rest != std::string::npos && line[rest] != '#') content = true;
+      continue;
+    }
+    const size_t first = line.find_first_not_of(" \t\r");
+    if (first != std::string::npos && line[first] != '#' && line[first] != '%') content = true;
+  }
+  return documents + (content ? 1 : 0);
 }
 
 }  // namespace ddafit::io

@@ -18,7 +18,9 @@ std::string read_input_file(const std::string& path, std::string& problem,
                             std::uintmax_t max_bytes = kMaxInputBytes);
 
 // Number of YAML documents in `text` that carry content: a `---` line starts another
-// document, which yaml-cpp's Load() drops without a word. Throws what YAML::LoadAll throws.
+// document, which yaml-cpp's Load() drops without a word. Read from the document markers
+// (`---` or `...` at the start of a line, where YAML allows nothing else), not with
+// YAML::LoadAll, which fuzzing sent into an endless loop (yaml-cpp 0.7).
 int yaml_document_count(const std::string& text);
 
 }  // namespace ddafit::io
