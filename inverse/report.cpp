@@ -3,6 +3,8 @@
 #include <fmt/format.h>
 #include <fmt/os.h>
 
+#include <cctype>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -139,28 +141,33 @@ std::string markdown(const Study& study, const InversionSummary& s) {
     md += fmt::format("{:.4g} | {} | {} |\n", f.best.chi2, f.fit.evaluations, f.fit.stop_reason);
   }
   if (s.best_level >= 0) {
-    md += "\n## Simulated against observed (best level)\n\n| point | quantity | kind | observed | sigma | simulated | residual |\n|---|---|---|---|---|---|---|\n";
+    md += "\n## Simulated against observed (best level)\n\nResiduals are (simulated - observed) / sigma: in "
+          "standard deviations of the observation; a limit that holds counts 0.\n\n| point | quantity | unit | kind | "
+          "observed | sigma | simulated | residual (sigmas) |\n|---|---|---|---|---|---|---|---|\n";
     const Evaluation& e = s.levels[s.best_level].best;
     for (size_t k = 0; k < study.observations.size(); ++k) {
       const Observation& o = study.observations[k];
-      md += fmt::format("| {} | {} | {} | {:.6g} | {:.3g} | {:.6g} | {:+.3f} |\n", o.point, o.quantity,
-                        kind_name(o.kind), o.value, o.sigma, e.simulated[k], e.residuals[k]);
+      md += fmt::format("| {} | {} | {} | {} | {:.6g} | {:.3g} | {:.6g} | {:+.2f} |\n", o.point, o.quantity,
+                        quantity_unit(o.quantity), kind_name(o.kind), o.value, o.sigma, e.simulated[k], e.residuals[k]);
     }
   }
   const BoundingFriction& f = s.friction;
-  md += "\n## Residual basal friction\n\n";
+  md += "\n## Residual basal friction\n\n**" + bounding_friction_sentence(study, s.friction) + "**\n\n";
   if (!f.available) {
     md += "Not computed: " + f.why_not + ".\n";
   } else {
     const Parameter& p = study.parameters[f.parameter];
-    md += fmt::format("mu_b = tan(phi_p - i) on interface `{}` (phi_p = {:.4g} deg) with {} = {:.4g}: **mu_b = {:.4f}**.\n\n",
-                      f.interface, f.peak_angle, p.name, f.best_value, f.mu_best);
+    md += fmt::format("mu_b = tan(phi_p - i) on interface `{}` (phi_p = {:.4g} deg) with {} = {:.4g}: mu_b = {:.4f} "
+                      "(phi_b = {:.2f} deg).\n\n",
+                      f.interface, f.peak_angle, p.name, f.best_value, f.mu_best, std::atan(f.mu_best) * 180.0 / M_PI);
     md += fmt::format("Profile of chi2 over {} ({} points, {}):\n\n", p.name, f.profile.size(),
                       f.reoptimized ? "other parameters re-optimised at each point" : "other parameters fixed at the best fit");
     for (const ProfileRange* r : {&f.delta1, &f.delta4})
-      md += fmt::format("- Delta chi2 <= {:g}: {} in [{:.4g}{}, {:.4g}{}] -> mu_b in [{:.4f}, {:.4f}]\n", r->threshold,
-                        p.name, r->low, r->low_at_bound ? " (bound)" : "", r->high, r->high_at_bound ? " (bound)" : "",
-                        r->mu_low, r->mu_high);
+      md += fmt::format("- Delta chi2 <= {:g}: {} in [{:.4g}{}, {:.4g}{}] -> mu_b in [{:.4f}, {:.4f}], phi_b in "
+                        "[{:.2f}, {:.2f}] deg\n",
+                        r->threshold, p.name, r->low, r->low_at_bound ? " (bound)" : "", r->high,
+                        r->high_at_bound ? " (bound)" : "", r->mu_low, r->mu_high, std::atan(r->mu_low) * 180.0 / M_PI,
+                        std::atan(r->mu_high) * 180.0 / M_PI);
     md += "\nThe lowest mu_b compatible with the observations (Delta chi2 <= 4) is the bounding friction.\n";
   }
   const CovarianceReport& c = s.covariance;
@@ -182,6 +189,30 @@ std::string markdown(const Study& study, const InversionSummary& s) {
 }
 
 }  // namespace
+
+const char* quantity_unit(const std::string& quantity) {
+  if (quantity.find("velocity") != std::string::npos) return "m/s";
+  if (quantity.find("displacement") != std::string::npos) return "m";
+  if (quantity == "duration") return "s";
+  return "-";
+}
+
+std::string bounding_friction_sentence(const Study& study, const BoundingFriction& f) {
+  if (!f.available) return "No bounding friction: " + f.why_not + ".";
+  const auto degrees = [](double mu) { return std::atan(mu) * 180.0 / M_PI; };
+  const std::string best = fmt::format("the best fit is mu_b = {:.3f} (phi_b = {:.1f} deg)", f.mu_best, degrees(f.mu_best));
+  // mu_b = tan(phi_p - i) falls as the profiled degradation or roughness rises, so the
+  // lowest friction sits at the range's upper end of the parameter.
+  if (f.delta4.high_at_bound)
+    return fmt::format("Basal friction as low as mu_b = {:.3f} (phi_b = {:.1f} deg, {} at its upper search bound) is "
+                       "still compatible at Delta chi2 <= 4 (interface `{}`): no lower bound was found; widen "
+                       "the bound to find one. {}{}.",
+                       f.delta4.mu_low, degrees(f.delta4.mu_low), study.parameters[f.parameter].name, f.interface,
+                       static_cast<char>(std::toupper(best[0])), best.substr(1));
+  return fmt::format("Basal friction cannot have dropped below mu_b = {:.3f} (phi_b = {:.1f} deg) at Delta chi2 <= 4 "
+                     "(interface `{}`); {}.",
+                     f.delta4.mu_low, degrees(f.delta4.mu_low), f.interface, best);
+}
 
 std::vector<std::string> write_report(const std::string& dir, const Study& study, const InversionSummary& summary) {
   std::error_code ec;

@@ -100,9 +100,13 @@ TEST(Cli, ShortTimeStepIsWarnedAbout) {
   text.replace(text.find("duration: 2"), 11, "duration: 0.01");
   const fs::path scene = write_scene("short_step", text);
   const fs::path out = fs::path(DDAFIT_TEST_TMP) / "short_step" / "out";
-  const CommandResult r = ddafit("simulate " + scene.string() + " --out " + out.string() + " --quiet", "short_step");
+  const CommandResult r = ddafit("simulate " + scene.string() + " --out " + out.string(), "short_step");
   EXPECT_EQ(r.code, 0) << r.err;
   EXPECT_NE(r.err.find("warning: time.step"), std::string::npos) << r.err;
+  // --quiet prints errors only: the warning is then in summary.json alone.
+  const CommandResult quiet = ddafit("simulate " + scene.string() + " --out " + out.string() + " --quiet", "short_step_quiet");
+  EXPECT_EQ(quiet.code, 0) << quiet.err;
+  EXPECT_EQ(quiet.err, "");
   const auto j = nlohmann::json::parse(slurp(out / "summary.json"));
   EXPECT_EQ(j["warnings"].size(), 1u);
 }

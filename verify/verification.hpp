@@ -18,6 +18,9 @@ struct CheckRow {
   double tolerance = 0.0;  // error <= tolerance passes
   bool pass = false;
   std::string why;         // where the tolerance comes from
+  // A one-sided check (a bound, not an analytic value): shown in place of `analytic`,
+  // e.g. "<= 0.001"; empty for a comparison with an analytic value.
+  std::string bound;
 };
 
 // Each check runs its scene and returns its rows. Checks are independent.

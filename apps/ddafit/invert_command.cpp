@@ -72,7 +72,14 @@ bool load_study(const std::string& path, inverse::Study& study) {
 
 }  // namespace
 
-int run_invert(const InvertArgs& args) {
+int run_invert(const InvertArgs& given) {
+  InvertArgs args = given;
+  if (args.study.empty()) {
+    // What ddafit is for, in one command: the twin experiment's back-analysis, whose true
+    // basal degradation is known (30 %), ending on the bounding-friction sentence.
+    args.study = std::string(DDAFIT_CASES_DIR) + "/inverse/twin_study.yaml";
+    if (!args.quiet) std::cerr << "no study given: running the built-in twin study " << args.study << "\n";
+  }
   inverse::Study study;
   if (!load_study(args.study, study)) return kExitBadInput;
   const int budget = args.budget > 0 ? args.budget : study.method.budget;
@@ -146,6 +153,8 @@ int run_invert(const InvertArgs& args) {
     for (const std::string& w : summary.covariance.warnings) std::cout << "covariance warning: " << w << "\n";
     std::cout << "wrote " << (std::filesystem::path(args.out) / "report.md").string() << "\n";
   }
+  // The answer the back-analysis is for, last, also with --quiet.
+  std::cout << inverse::bounding_friction_sentence(study, summary.friction) << "\n";
   return kExitSuccess;
 }
 

@@ -67,7 +67,7 @@ int main(int argc, char** argv) {
   simulate->add_option("scene", sim.scene, "scene file (YAML); without it, the built-in incline case");
   simulate->add_option("--out", sim.out, "output folder")->capture_default_str();
   simulate->add_option("--set", sim.sets, "override a scene value, KEY=VALUE (repeatable)");
-  simulate->add_flag("--quiet", sim.quiet, "print nothing but errors");
+  simulate->add_flag("--quiet", sim.quiet, "print errors only (warnings stay in summary.json)");
   simulate->add_option("--vtk-interval", sim.vtk_interval, "write DIR/vtk/blocks_NNNNN.vtk every this many s")
       ->check(within(0.0, 1e6));
   simulate->add_flag("--plots", sim.plots, "draw distance/velocity charts (PNG, needs gnuplot)");
@@ -102,7 +102,9 @@ int main(int argc, char** argv) {
 
   InvertArgs inv;
   CLI::App* invert = app.add_subcommand("invert", "back-analysis: fit scene values to observations (docs/back-analysis.md)");
-  invert->add_option("study", inv.study, "study file (YAML)")->required();
+  invert->add_option("study", inv.study,
+                     "study file (YAML); without it, the built-in twin study (cases/inverse/twin_study.yaml, "
+                     "about half a minute)");
   invert->add_option("--out", inv.out, "output folder: report and evaluation cache")->capture_default_str();
   invert->add_flag("--resume", inv.resume, "reuse the evaluations cached in the output folder");
   invert->add_option("--budget", inv.budget, "objective evaluations per fit (default: the study's method.budget)")

@@ -92,11 +92,12 @@ int run_plot(const PlotArgs& args) {
     return kExitBadInput;
   }
   std::string reason;
-  if (!plot_history(args.dir, scene, reason)) {
+  if (!plot_history(args.dir, scene, args.scene, reason)) {
     std::cerr << "charts not drawn: " << reason << "\n";
     return kExitRunFailed;
   }
-  std::cout << "wrote distance_time.png, velocity_time.png, velocity_distance.png in " << args.dir << "\n";
+  std::cout << "wrote distance_time.png, runout_time.png, velocity_time.png, velocity_distance.png in " << args.dir
+            << "\n";
   return kExitSuccess;
 }
 

@@ -43,7 +43,48 @@ bool plot_blocks(const std::string& dir, const Scene& scene, std::string& reason
   return run_gnuplot(script, reason);
 }
 
-bool plot_history(const std::string& dir, const Scene& scene, std::string& reason) {
+namespace {
+
+// Quotes for a gnuplot single-quoted string: a quote is doubled.
+std::string gnuplot_text(std::string text) {
+  for (size_t k = text.find('\''); k != std::string::npos; k = text.find('\'', k + 2)) text.insert(k, 1, '\'');
+  return text;
+}
+
+void write_outlines(const std::string& path, const std::vector<std::vector<Vec2>>& polygons) {
+  auto out = fmt::output_file(path);
+  for (const std::vector<Vec2>& polygon : polygons) {
+    for (const Vec2& p : polygon) out.print("{:.9g} {:.9g}\n", p.x(), p.y());
+    if (!polygon.empty()) out.print("{:.9g} {:.9g}\n\n", polygon.front().x(), polygon.front().y());
+  }
+}
+
+}  // namespace
+
+bool plot_configuration(const std::string& dir, const Scene& scene, const std::vector<std::vector<Vec2>>& final_blocks,
+                        const std::string& title, std::string& reason) {
+  const std::filesystem::path d(dir);
+  std::vector<std::vector<Vec2>> fixed, initial;
+  for (const BlockInput& b : scene.blocks) (b.fixed ? fixed : initial).push_back(b.polygon);
+  write_outlines((d / "configuration_fixed.dat").string(), fixed);
+  write_outlines((d / "configuration_initial.dat").string(), initial);
+  write_outlines((d / "configuration_final.dat").string(), final_blocks);
+  const std::string script = (d / "configuration.gp").string();
+  {
+    auto gp = fmt::output_file(script);
+    gp.print("set terminal pngcairo size 1800,1000 font ',12'\nset output '{}'\n", (d / "configuration.png").string());
+    gp.print("set size ratio -1\nset xlabel 'x (m)'\nset ylabel 'y (m)'\nset key outside below\n");
+    gp.print("set title '{}: blocks at the start and at the end of the run'\n", gnuplot_text(title));
+    const double width = initial.size() > 500 ? 0.3 : 0.8;
+    gp.print("plot '{}' with filledcurves lc rgb '#dddddd' title 'fixed', '{}' with lines lc rgb '#9ab0c8' lw {} "
+             "title 'start', '{}' with lines lc rgb '#202020' lw {} title 'end'\n",
+             (d / "configuration_fixed.dat").string(), (d / "configuration_initial.dat").string(), width,
+             (d / "configuration_final.dat").string(), width);
+  }
+  return run_gnuplot(script, reason);
+}
+
+bool plot_history(const std::string& dir, const Scene& scene, const std::string& title, std::string& reason) {
   const std::filesystem::path d(dir);
   const std::string csv = (d / "history.csv").string();
   const std::string script = (d / "history.gp").string();
@@ -51,6 +92,7 @@ bool plot_history(const std::string& dir, const Scene& scene, std::string& reaso
     auto gp = fmt::output_file(script);
     gp.print("set datafile separator ','\nset terminal pngcairo size 1200,800 font ',12'\nset key outside right\n");
     gp.print("set grid\n");
+    const std::string name = gnuplot_text(title);
     // Column numbers of history.csv: time 1, point 2, x 3, y 4, ux 5, uy 6, vx 7, vy 8.
     // Rows come time by time, one per point in scene order, so point k is every n-th
     // row from row k (a filter on the name would break each line at the other rows).
@@ -62,12 +104,17 @@ bool plot_history(const std::string& dir, const Scene& scene, std::string& reaso
                             csv, n, k, x, y, scene.measure[k].name);
       return plot + "\n";
     };
-    gp.print("set output '{}'\nset xlabel 'time (s)'\nset ylabel 'distance |u| (m)'\n", (d / "distance_time.png").string());
+    gp.print("set output '{}'\nset title '{}: distance against time'\nset xlabel 'time (s)'\n"
+             "set ylabel 'distance |u| (m)'\n", (d / "distance_time.png").string(), name);
     gp.print("{}", curves("$1", "sqrt($5**2+$6**2)"));
-    gp.print("set output '{}'\nset ylabel 'speed |v| (m/s)'\n", (d / "velocity_time.png").string());
+    gp.print("set output '{}'\nset title '{}: lateral runout against time'\nset ylabel 'lateral runout |u_x| (m)'\n",
+             (d / "runout_time.png").string(), name);
+    gp.print("{}", curves("$1", "abs($5)"));
+    gp.print("set output '{}'\nset title '{}: speed against time'\nset ylabel 'speed |v| (m/s)'\n",
+             (d / "velocity_time.png").string(), name);
     gp.print("{}", curves("$1", "sqrt($7**2+$8**2)"));
-    gp.print("set output '{}'\nset xlabel 'distance |u| (m)'\nset ylabel 'speed |v| (m/s)'\n",
-             (d / "velocity_distance.png").string());
+    gp.print("set output '{}'\nset title '{}: speed against distance'\nset xlabel 'distance |u| (m)'\n"
+             "set ylabel 'speed |v| (m/s)'\n", (d / "velocity_distance.png").string(), name);
     gp.print("{}", curves("sqrt($5**2+$6**2)", "sqrt($7**2+$8**2)"));
   }
   return run_gnuplot(script, reason);

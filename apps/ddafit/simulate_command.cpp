@@ -85,6 +85,19 @@ int run_simulate(const SimulateArgs& args) {
       next += args.vtk_interval;
     };
   }
+  // The free blocks at the last output, for --plots' picture of the final configuration.
+  std::vector<std::vector<Vec2>> final_blocks;
+  const auto vtk_output = hooks.on_output;
+  if (args.plots) {
+    hooks.on_output = [&, vtk_output](double t, const BlockSystem& system) {
+      if (vtk_output) vtk_output(t, system);
+      final_blocks.clear();
+      for (const Block& b : system.blocks)
+        if (!b.fixed)
+          final_blocks.emplace_back(system.vertices.begin() + b.first_vertex,
+                                    system.vertices.begin() + b.first_vertex + b.vertex_count);
+    };
+  }
   if (!args.quiet) {
     hooks.on_progress = [start = std::chrono::steady_clock::now()](double t, double duration) {
       const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -111,7 +124,9 @@ int run_simulate(const SimulateArgs& args) {
   }
 
   const SimulationSummary& s = result.summary;
-  for (const std::string& w : s.warnings) std::cerr << label << ": warning: " << w << "\n";
+  // --quiet prints errors only; the warnings stay in summary.json.
+  if (!args.quiet)
+    for (const std::string& w : s.warnings) std::cerr << label << ": warning: " << w << "\n";
   if (s.status == RunStatus::InvalidScene) {
     std::cerr << label << ": " << s.message << "\n";
     return kExitBadInput;
@@ -127,7 +142,8 @@ int run_simulate(const SimulateArgs& args) {
   if (!vtk_problem.empty()) std::cerr << args.out << ": VTK snapshots stopped: " << vtk_problem << "\n";
   if (args.plots) {
     std::string reason;
-    if (!plot_history(args.out, scene, reason)) std::cerr << "note: charts not drawn: " << reason << "\n";
+    if (!plot_history(args.out, scene, label, reason) || !plot_configuration(args.out, scene, final_blocks, label, reason))
+      std::cerr << "note: charts not drawn: " << reason << "\n";
   }
   if (!args.quiet) {
     std::cout << fmt::format("{} steps, {} open-close iterations, {} step cuts, {} penalty raises, {:.2f} s wall\n",

@@ -61,7 +61,10 @@ constexpr std::uint32_t manifold_id(int owner, int vertex, int other_feature, bo
 // `b_solid[i]` false marks edge i (vertex i to i + 1) as such a cut: it is never a
 // reference face or an incident face. It only counts as a separating axis to rule a
 // contact out: the other polygon wholly beyond a cut gives no manifold (it lies over or
-// beside the block's other pieces, whose own manifolds hold it). Empty spans: every edge is solid. Where a
+// beside the block's other pieces, whose own manifolds hold it). A piece whose edges turned
+// towards the reference face are all cuts has no incident face there; the other polygon's
+// best face is then the reference, or there is no contact if that fails the same way.
+// Empty spans: every edge is solid. Where a
 // polygon has cuts, points deeper than max_distance are dropped: no step moves a block
 // that far into another, and such a point is a corner read across a cut, inside the
 // block (one read 18 m "deep" on Vajont section I).
