@@ -8,19 +8,12 @@
 
 #include "forward/block_system.hpp"
 #include "forward/step/containment_check.hpp"
+#include "verify/cases.hpp"
 
 namespace ddafit {
 namespace {
 
-BlockInput block(const std::string& name, std::vector<Vec2> polygon, bool fixed) {
-  BlockInput b;
-  b.name = name;
-  b.group = name;
-  b.material = 0;
-  b.fixed = fixed;
-  b.polygon = std::move(polygon);
-  return b;
-}
+using verification::block;
 
 // A 10 m x 4 m fixed base and a free block resting on it, far from the origin as on Vajont.
 BlockSystem base_and(std::vector<Vec2> free_polygon) {

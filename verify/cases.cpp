@@ -18,15 +18,6 @@ std::vector<Vec2> box(Vec2 origin, Vec2 along, Vec2 up, double length, double he
   return {origin, origin + length * along, origin + length * along + height * up, origin + height * up};
 }
 
-BlockInput block(const std::string& name, std::vector<Vec2> polygon, bool fixed) {
-  BlockInput b;
-  b.name = name;
-  b.group = name;
-  b.material = 0;
-  b.fixed = fixed;
-  b.polygon = std::move(polygon);
-  return b;
-}
 
 double shift_of_top(int courses, double w) { return ((courses - 1) % 2) ? 0.5 * w : 0.0; }
 
@@ -123,6 +114,16 @@ Scene brick_wall_scene(int courses, int per_course, double duration) {
   }
   s.measure.push_back({"top", {shift_of_top(courses, w) + 0.5 * w, (courses - 0.5) * h}});
   return s;
+}
+
+BlockInput block(const std::string& name, std::vector<Vec2> polygon, bool fixed) {
+  BlockInput b;
+  b.name = name;
+  b.group = name;
+  b.material = 0;
+  b.fixed = fixed;
+  b.polygon = std::move(polygon);
+  return b;
 }
 
 }  // namespace ddafit::verification

@@ -34,4 +34,7 @@ Scene collision_scene();
 // the benchmark's many-contact scene (100 blocks for 10 x 10).
 Scene brick_wall_scene(int courses, int per_course, double duration);
 
+// A block of material 0 in its own group, named `name`.
+BlockInput block(const std::string& name, std::vector<Vec2> polygon, bool fixed);
+
 }  // namespace ddafit::verification
