@@ -23,6 +23,8 @@ struct InversionOptions {
   std::string model_version = "unknown";  // part of the cache key: a new version never reuses runs
   std::function<void(const Progress&)> on_progress;  // after every evaluation; must not throw
   std::function<void(const std::string&)> on_log;    // failed runs and other notes; must not throw
+  int jobs = 1;  // forward runs at a time where points are independent (scan designs and profiles)
+  std::function<void()> on_worker_start;  // first thing on each worker thread (its thread budget)
 };
 
 // Set-up problems (the cache cannot be opened, or exists without --resume): one line.
@@ -108,6 +110,8 @@ struct ScanResult {
 };
 ScanResult run_scan(const Study& study, const InversionOptions& options, const std::string& parameter, int points,
                     const ForwardModel& forward = run_forward);
+// The points of that scan: `points` values of `parameter` from lower to upper.
+std::vector<std::vector<double>> profile_points(const Study& study, int parameter, int points);
 
 // The parts, for tests.
 // The connected range of the profiled parameter around the best completed point where

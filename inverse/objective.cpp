@@ -17,6 +17,17 @@ double summary_value(const PointSummary& p, const std::string& quantity) {
   return std::numeric_limits<double>::quiet_NaN();
 }
 
+SimulationResult run_guarded(const ForwardModel& forward, const std::string& scene_path, const Overrides& overrides) {
+  SimulationResult run;
+  try {
+    run = forward(scene_path, overrides);
+  } catch (const std::exception& ex) {  // the forward call promises not to throw; be sure
+    run.summary.status = RunStatus::Failed;
+    run.summary.message = std::string("forward run threw: ") + ex.what();
+  }
+  return run;
+}
+
 Objective::Objective(const Study& study, EvaluationCache& cache, ForwardModel forward)
     : study_(study), cache_(cache), forward_(std::move(forward)) {}
 
@@ -60,7 +71,9 @@ Evaluation Objective::score(const std::vector<double>& values, const SimulationS
   return e;
 }
 
-Evaluation Objective::evaluate(const std::vector<double>& values) {
+Evaluation Objective::evaluate(const std::vector<double>& values) { return record(values, nullptr, 0.0); }
+
+Evaluation Objective::record(const std::vector<double>& values, SimulationResult* made, double made_seconds) {
   const std::string key = point_key(study_, values);
   if (const auto it = seen_.find(key); it != seen_.end()) {
     // Seen in this process (an optimiser revisiting, or another fit): never run twice.
@@ -76,22 +89,24 @@ Evaluation Objective::evaluate(const std::vector<double>& values) {
   if (std::optional<CachedRun> hit = cache_.find(key)) {
     e = score(values, hit->result.summary);
     e.cached = true;
+    e.wall_seconds = hit->wall_seconds;
     ++cached_;
     seconds_cached_ += hit->wall_seconds;
     history = std::move(hit->result.history);
   } else {
-    const auto t0 = std::chrono::steady_clock::now();
     SimulationResult run;
-    try {
-      run = forward_(study_.scene_path, point_overrides(study_, values));
-    } catch (const std::exception& ex) {  // the forward call promises not to throw; be sure
-      run.summary.status = RunStatus::Failed;
-      run.summary.message = std::string("forward run threw: ") + ex.what();
+    double seconds = made_seconds;
+    if (made) {
+      run = std::move(*made);
+    } else {
+      const auto t0 = std::chrono::steady_clock::now();
+      run = run_guarded(forward_, study_.scene_path, point_overrides(study_, values));
+      seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     }
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     ++run_;
     seconds_run_ += seconds;
     e = score(values, run.summary);
+    e.wall_seconds = seconds;
     // Histories are kept for new best points only: the report draws the best fit's curve.
     const bool is_best = !e.failed && (best_ < 0 || e.chi2 < log_[best_].chi2);
     cache_.store(key, run, seconds, is_best);

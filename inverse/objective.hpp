@@ -29,6 +29,7 @@ struct Evaluation {
   bool cached = false;            // served from the cache file (an earlier process)
   std::string message;            // why it failed
   std::vector<std::string> point_names;  // the run's measure points, in scene order
+  double wall_seconds = 0.0;      // of the forward run (as recorded in the cache when cached)
 };
 
 // What the progress line shows.
@@ -52,6 +53,14 @@ class Objective {
 
   Evaluation evaluate(const std::vector<double>& values);
 
+  // The same evaluations as evaluate() on each point in turn, with the forward runs of the
+  // points neither seen nor cached made `jobs` at a time on worker threads (objective_batch.cpp).
+  // Only the calling thread scores, writes the cache and reports progress, in the order of
+  // `points`, so a batch gives the same log, cache and best point as the loop would.
+  std::vector<Evaluation> evaluate_batch(const std::vector<std::vector<double>>& points, int jobs);
+  // Runs first on each worker thread (the command line sets the thread budget of a run).
+  std::function<void()> on_worker_start;
+
   // The best point since the last reset_best() (one fit, one block-size level).
   void reset_best();
   bool has_best() const { return best_ >= 0; }
@@ -66,6 +75,8 @@ class Objective {
   double wall_seconds_run() const { return seconds_run_; }
 
  private:
+  // evaluate() with the forward run already made (`run` non-null) or to be made now.
+  Evaluation record(const std::vector<double>& values, SimulationResult* run, double seconds);
   Evaluation score(const std::vector<double>& values, const SimulationSummary& summary) const;
 
   const Study& study_;
@@ -79,6 +90,9 @@ class Objective {
   long cached_ = 0, run_ = 0, planned_ = 0;
   double seconds_run_ = 0.0, seconds_cached_ = 0.0;
 };
+
+// forward(scene_path, overrides), with an exception turned into a failed run.
+SimulationResult run_guarded(const ForwardModel& forward, const std::string& scene_path, const Overrides& overrides);
 
 // A summary field by its name (summary_quantities()); NaN for an unknown name.
 double summary_value(const PointSummary& point, const std::string& quantity);

@@ -8,6 +8,18 @@
 
 namespace ddafit::inverse {
 
+std::vector<std::vector<double>> profile_points(const Study& study, int parameter, int points) {
+  std::vector<double> x;
+  for (const Parameter& p : study.parameters) x.push_back(p.discrete() ? p.levels.front() : p.start);
+  const Parameter& p = study.parameters[parameter];
+  std::vector<std::vector<double>> out;
+  for (int k = 0; k < points; ++k) {
+    x[parameter] = p.lower + (p.upper - p.lower) * k / (points - 1);
+    out.push_back(x);
+  }
+  return out;
+}
+
 ScanResult run_scan(const Study& study, const InversionOptions& options, const std::string& parameter, int points,
                     const ForwardModel& forward) {
   ScanResult out;
@@ -28,13 +40,8 @@ ScanResult run_scan(const Study& study, const InversionOptions& options, const s
   objective.on_progress = options.on_progress;
   objective.on_log = options.on_log;
   objective.set_planned(points);
-  std::vector<double> x;
-  for (const Parameter& p : study.parameters) x.push_back(p.discrete() ? p.levels.front() : p.start);
-  const Parameter& p = study.parameters[out.parameter];
-  for (int k = 0; k < points; ++k) {
-    x[out.parameter] = p.lower + (p.upper - p.lower) * k / (points - 1);
-    out.points.push_back(objective.evaluate(x));
-  }
+  objective.on_worker_start = options.on_worker_start;
+  out.points = objective.evaluate_batch(profile_points(study, out.parameter, points), options.jobs);
   out.cached = objective.progress().cached;
   out.run = objective.progress().run;
   return out;

@@ -8,7 +8,14 @@
 #include "forward/analysis/stable_friction.hpp"
 #include "forward/scene.hpp"
 
+namespace ddafit::inverse {
+struct Study;
+}
+
 namespace ddafit::app {
+
+// Reads a study and checks it against its scene; on failure prints the one-line error.
+bool load_study(const std::string& path, inverse::Study& study);
 
 // "KEY=VALUE" scene overrides from --set, split into pairs; returns false on a bad one.
 bool parse_overrides(const std::vector<std::string>& sets, std::vector<std::pair<std::string, std::string>>& out);
@@ -62,8 +69,16 @@ int run_invert(const InvertArgs& args);
 
 struct ScanArgs {
   std::string study;
-  std::string parameter;  // a continuous parameter's name in the study
-  int points = 11;
+  std::string design = "profile";  // profile | grid | lhs | morris
+  std::string parameter;  // profile: a continuous parameter's name in the study
+  int points = 11;        // profile: points from lower to upper; grid: values per parameter
+  int samples = 20;       // lhs
+  int trajectories = 10;  // morris
+  int levels = 4;         // morris
+  long seed = 1;          // lhs, morris
+  int jobs = 1;           // forward runs at a time
+  int threads = 0;        // per run; 0 = the core count / jobs
+  bool dry_run = false;
   std::string out = "ddafit-scan";
   bool resume = false;
 };

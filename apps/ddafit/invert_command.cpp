@@ -58,7 +58,8 @@ void print_plan(const inverse::Study& study, int budget, const std::string& out)
                            out);
 }
 
-// Reads and checks a study against its scene; on failure prints the one-line error.
+}  // namespace
+
 bool load_study(const std::string& path, inverse::Study& study) {
   try {
     study = inverse::read_study(path);
@@ -69,8 +70,6 @@ bool load_study(const std::string& path, inverse::Study& study) {
     return false;
   }
 }
-
-}  // namespace
 
 int run_invert(const InvertArgs& given) {
   InvertArgs args = given;
@@ -155,47 +154,6 @@ int run_invert(const InvertArgs& given) {
   }
   // The answer the back-analysis is for, last, also with --quiet.
   std::cout << inverse::bounding_friction_sentence(study, summary.friction) << "\n";
-  return kExitSuccess;
-}
-
-int run_scan(const ScanArgs& args) {
-  inverse::Study study;
-  if (!load_study(args.study, study)) return kExitBadInput;
-  inverse::InversionOptions options;
-  options.out_dir = args.out;
-  options.resume = args.resume;
-  options.model_version = std::string(DDAFIT_VERSION) + "+" + kModelRevision;
-  options.on_log = [](const std::string& line) { std::cerr << "note: " << line << "\n"; };
-  if (const std::string problem = prepare_output_folder(args.out); !problem.empty()) {
-    std::cerr << problem << "\n";
-    return kExitBadInput;
-  }
-  exit_on_stop_signals("ddafit scan: interrupted; every finished forward run is kept in " + args.out +
-                       "/evaluations.sqlite: run the same command with --resume to go on from there\n");
-  inverse::ScanResult scan;
-  try {
-    scan = inverse::run_scan(study, options, args.parameter, args.points);
-  } catch (const inverse::InversionError& e) {
-    std::cerr << e.what() << "\n";
-    return kExitBadInput;
-  } catch (const inverse::CacheError& e) {
-    std::cerr << e.what() << "\n";
-    return kExitRunFailed;
-  }
-  // Table to stdout and DIR/scan.csv: the value, chi2, then each observation's simulated value.
-  std::string header = args.parameter + ",chi2";
-  for (const inverse::Observation& o : study.observations) header += "," + o.point + ":" + o.quantity;
-  std::ofstream csv(std::filesystem::path(args.out) / "scan.csv");
-  csv << header << "\n";
-  std::cout << header << "\n";
-  for (const inverse::Evaluation& e : scan.points) {
-    std::string row = fmt::format("{:.10g},{:.6g}", e.values[scan.parameter], e.chi2);
-    for (double v : e.simulated) row += fmt::format(",{:.6g}", v);
-    csv << row << "\n";
-    std::cout << row << "\n";
-  }
-  std::cerr << fmt::format("{} points: {} run, {} cached; wrote {}/scan.csv\n", scan.points.size(), scan.run,
-                           scan.cached, args.out);
   return kExitSuccess;
 }
 

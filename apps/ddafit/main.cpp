@@ -113,11 +113,27 @@ int main(int argc, char** argv) {
   invert->add_flag("--check", inv.check, "read and check the study and its scene, print the plan, run nothing");
 
   ScanArgs sc;
-  CLI::App* scan = app.add_subcommand("scan", "chi2 along one study parameter, the others at their starts");
+  CLI::App* scan = app.add_subcommand("scan", "chi2 over a study's parameters: a profile, a grid, a Latin hypercube or Morris");
   scan->add_option("study", sc.study, "study file (YAML)")->required();
-  scan->add_option("--parameter", sc.parameter, "the parameter to scan (its name in the study)")->required();
-  scan->add_option("--points", sc.points, "points from lower to upper")->capture_default_str()->check(CLI::Range(2, 10000));
-  scan->add_option("--out", sc.out, "output folder: scan.csv and the evaluation cache")->capture_default_str();
+  scan->add_option("--design", sc.design, "profile (one parameter), grid, lhs or morris")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"profile", "grid", "lhs", "morris"}));
+  scan->add_option("--parameter", sc.parameter, "profile: the parameter to scan (its name in the study)");
+  scan->add_option("--points", sc.points, "profile: points from lower to upper; grid: values per parameter")
+      ->capture_default_str()
+      ->check(CLI::Range(2, 10000));
+  scan->add_option("--samples", sc.samples, "lhs: points")->capture_default_str()->check(CLI::Range(2, 100000));
+  scan->add_option("--trajectories", sc.trajectories, "morris: trajectories")->capture_default_str()->check(CLI::Range(2, 10000));
+  scan->add_option("--levels", sc.levels, "morris: grid levels (even)")->capture_default_str()->check(CLI::Range(2, 100));
+  scan->add_option("--seed", sc.seed, "lhs, morris: random seed (the same seed gives the same points)")
+      ->capture_default_str()
+      ->check(CLI::Range(0L, 1000000000000L));
+  scan->add_option("--jobs", sc.jobs, "forward runs at a time (jobs x threads <= cores)")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 256));
+  scan->add_flag("--dry-run", sc.dry_run, "print the plan (runs, cached, estimated wall time) and stop");
+  scan->add_option("--out", sc.out, "output folder: runs.csv or scan.csv, report.md and the evaluation cache")
+      ->capture_default_str();
   scan->add_flag("--resume", sc.resume, "reuse the evaluations cached in the output folder");
 
   AnimateArgs an;
@@ -175,6 +191,7 @@ int main(int argc, char** argv) {
     return kExitBadInput;
   }
   set_thread_budget(threads);
+  sc.threads = threads;
   // Each command reports its own errors in one line; this is the net under them, so that
   // an error nobody foresaw still ends as a message and exit 2, never as an abort.
   try {

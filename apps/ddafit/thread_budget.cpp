@@ -3,6 +3,7 @@
 #include <dlfcn.h>
 #include <omp.h>
 
+#include <algorithm>
 #include <thread>
 
 namespace ddafit::app {
@@ -15,5 +16,7 @@ void set_thread_budget(int threads) {
   using SetThreads = void (*)(int);
   if (auto set = reinterpret_cast<SetThreads>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads"))) set(1);
 }
+
+void set_worker_threads(int threads) { omp_set_num_threads(std::max(1, threads)); }
 
 }  // namespace ddafit::app

@@ -11,4 +11,8 @@ namespace ddafit::app {
 // BLAS thread gains 0-10 % on these bandwidth-bound factorisations (field notes).
 void set_thread_budget(int threads);
 
+// The OpenMP threads of the calling thread's model runs (a worker of `scan --jobs`): each
+// std::thread starts with the default, not the main thread's budget.
+void set_worker_threads(int threads);
+
 }  // namespace ddafit::app

@@ -1,0 +1,232 @@
+// `ddafit scan`: a profile along one parameter (scan.csv, as before) or a design over all
+// of them (runs.csv and report.md), through the evaluation cache, --jobs runs at a time.
+#include <fmt/format.h>
+
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <thread>
+
+#include "apps/ddafit/commands.hpp"
+#include "apps/ddafit/exit_codes.hpp"
+#include "apps/ddafit/interrupt.hpp"
+#include "apps/ddafit/output_files.hpp"
+#include "apps/ddafit/thread_budget.hpp"
+#include "forward/model_revision.hpp"
+#include "inverse/evaluation_cache.hpp"
+#include "inverse/inversion.hpp"
+#include "inverse/scan_design.hpp"
+#include "inverse/study.hpp"
+
+namespace ddafit::app {
+namespace {
+
+namespace fs = std::filesystem;
+
+inverse::DesignOptions design_options(const ScanArgs& a) {
+  inverse::DesignOptions d;
+  d.kind = a.design == "grid"     ? inverse::DesignKind::Grid
+           : a.design == "morris" ? inverse::DesignKind::Morris
+                                  : inverse::DesignKind::LatinHypercube;
+  d.points = a.points;
+  d.samples = a.samples;
+  d.trajectories = a.trajectories;
+  d.levels = a.levels;
+  d.seed = static_cast<std::uint64_t>(a.seed);
+  return d;
+}
+
+std::string status_of(const inverse::Evaluation& e) { return e.failed ? "failed" : "completed"; }
+
+// runs.csv: one row per design point: its parameters, chi2, status, wall time, and the
+// simulated value of every observation (the quantities the study compares).
+void write_runs_csv(const fs::path& path, const inverse::Study& study, const inverse::DesignResult& r) {
+  std::ofstream csv(path);
+  csv << "run";
+  for (const inverse::Parameter& p : study.parameters) csv << "," << p.name;
+  csv << ",chi2,status,wall_seconds,cached";
+  for (const inverse::Observation& o : study.observations) csv << "," << o.point << ":" << o.quantity;
+  csv << "\n";
+  for (size_t k = 0; k < r.runs.size(); ++k) {
+    const inverse::Evaluation& e = r.runs[k];
+    csv << k;
+    for (double v : e.values) csv << fmt::format(",{:.10g}", v);
+    csv << fmt::format(",{:.6g},{},{:.3f},{}", e.chi2, status_of(e), e.wall_seconds, e.cached ? 1 : 0);
+    for (double v : e.simulated) csv << fmt::format(",{:.6g}", v);
+    csv << "\n";
+  }
+  if (!csv) throw std::runtime_error(path.string() + ": cannot write");
+}
+
+std::string spread_sentence(const inverse::FrictionSpread& f, double threshold) {
+  if (!f.available) return fmt::format("Delta chi2 <= {:g}: no friction range ({}).", threshold, f.why_not);
+  const auto deg = [](double mu) { return std::atan(mu) * 180.0 / M_PI; };
+  return fmt::format("Delta chi2 <= {:g}: {} runs; residual friction of interface `{}` between mu_b = {:.3f} "
+                     "(phi_b = {:.1f} deg) and {:.3f} ({:.1f} deg).",
+                     threshold, f.runs, f.interface, f.mu_low, deg(f.mu_low), f.mu_high, deg(f.mu_high));
+}
+
+void write_report_md(const fs::path& path, const ScanArgs& a, const inverse::Study& study, const inverse::DesignResult& r) {
+  std::ofstream md(path);
+  md << "# Scan: " << study.path << " (" << a.design << " design)\n\n";
+  md << fmt::format("{} points: {} forward runs made now, {} from the cache ({}).\n\n", r.runs.size(), r.run, r.cached,
+                    r.cache_path);
+  if (r.best >= 0) {
+    md << "## Best point\n\n| parameter | value |\n|---|---|\n";
+    for (size_t k = 0; k < study.parameters.size(); ++k)
+      md << fmt::format("| {} | {:.6g} |\n", study.parameters[k].name, r.runs[r.best].values[k]);
+    md << fmt::format("| chi2 | {:.4g} |\n\n", r.runs[r.best].chi2);
+  } else {
+    md << "Every run failed: see runs.csv and the messages printed during the scan.\n\n";
+  }
+  md << "## Residual basal friction over the runs that fit\n\n";
+  md << "- " << spread_sentence(r.within1, 1.0) << "\n- " << spread_sentence(r.within4, 4.0) << "\n\n";
+  md << "A scan samples; the bounds of the friction range are as fine as its points. Where the range "
+        "reaches a parameter's search bound, widen the bound before quoting it.\n";
+  if (!r.effects.empty()) {
+    md << "\n## Morris elementary effects on chi2 (parameters ranked by mu*)\n\n";
+    md << "mu* says how much chi2 changes when the parameter moves over its range; a sigma as large as mu* "
+          "says that change depends on the other parameters (interaction or non-linearity).\n\n";
+    std::vector<int> continuous;
+    for (size_t k = 0; k < study.parameters.size(); ++k)
+      if (!study.parameters[k].discrete()) continuous.push_back(static_cast<int>(k));
+    for (size_t level = 0; level < r.effects.size(); ++level) {
+      const inverse::MorrisEffects& e = r.effects[level];
+      std::vector<size_t> order(e.mu_star.size());
+      for (size_t d = 0; d < order.size(); ++d) order[d] = d;
+      std::sort(order.begin(), order.end(), [&](size_t x, size_t y) { return e.mu_star[x] > e.mu_star[y]; });
+      md << fmt::format("Level combination {}:\n\n| rank | parameter | mu* | sigma | effects |\n|---|---|---|---|---|\n",
+                        level + 1);
+      for (size_t rank = 0; rank < order.size(); ++rank) {
+        const size_t d = order[rank];
+        md << fmt::format("| {} | {} | {:.4g} | {:.4g} | {} |\n", rank + 1, study.parameters[continuous[d]].name,
+                          e.mu_star[d], e.sigma[d], e.counted[d]);
+      }
+      md << "\n";
+    }
+  }
+}
+
+int run_profile(const ScanArgs& args, const inverse::Study& study, const inverse::InversionOptions& options);
+
+}  // namespace
+
+int run_scan(const ScanArgs& args) {
+  inverse::Study study;
+  if (!load_study(args.study, study)) return kExitBadInput;
+  const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  if (args.threads > 0 && args.jobs * args.threads > cores) {
+    std::cerr << fmt::format("ddafit scan: --jobs {} x --threads {} = {} threads on {} cores; lower one of them\n",
+                             args.jobs, args.threads, args.jobs * args.threads, cores);
+    return kExitBadInput;
+  }
+  const int per_run = args.threads > 0 ? args.threads : std::max(1, cores / args.jobs);
+  inverse::InversionOptions options;
+  options.out_dir = args.out;
+  options.resume = args.resume;
+  options.model_version = std::string(DDAFIT_VERSION) + "+" + kModelRevision;
+  options.on_log = [](const std::string& line) { std::cerr << "note: " << line << "\n"; };
+  options.jobs = args.jobs;
+  options.on_worker_start = [per_run] { set_worker_threads(per_run); };
+  if (args.jobs > 1) set_worker_threads(per_run);
+
+  int profiled = -1;
+  std::vector<std::vector<double>> points;
+  if (args.design == "profile") {
+    for (size_t k = 0; k < study.parameters.size(); ++k)
+      if (study.parameters[k].name == args.parameter && !study.parameters[k].discrete()) profiled = static_cast<int>(k);
+    if (profiled < 0) {
+      std::cerr << args.study << ": --parameter: '" << args.parameter
+                << "' is not a continuous parameter of the study (the profile design needs one)\n";
+      return kExitBadInput;
+    }
+    points = inverse::profile_points(study, profiled, args.points);
+  } else {
+    points = inverse::design_values(study, design_options(args));
+  }
+  if (points.size() > 100000) {
+    std::cerr << fmt::format("ddafit scan: the {} design asks for {} runs, more than 100000; lower --points, "
+                             "--samples or --trajectories\n", args.design, points.size());
+    return kExitBadInput;
+  }
+  const inverse::DesignPlan plan = inverse::plan_points(study, options, points);
+  const long left = plan.distinct - plan.cached;
+  std::cout << fmt::format("plan: {} design, {} runs ({} distinct, {} in the cache, {} to run, {} at a time)", args.design,
+                           plan.points, plan.distinct, plan.cached, left, args.jobs);
+  if (plan.mean_cached_seconds > 0.0)
+    std::cout << fmt::format("; about {} of wall from the cached runs' {:.1f} s each",
+                             clock_text(plan.mean_cached_seconds * static_cast<double>(left) / args.jobs),
+                             plan.mean_cached_seconds);
+  std::cout << std::endl;
+  if (args.dry_run) return kExitSuccess;
+  if (const std::string problem = prepare_output_folder(args.out); !problem.empty()) {
+    std::cerr << problem << "\n";
+    return kExitBadInput;
+  }
+  exit_on_stop_signals("ddafit scan: interrupted; every finished forward run is kept in " + args.out +
+                       "/evaluations.sqlite: run the same command with --resume to go on from there\n");
+  options.on_progress = [](const inverse::Progress& p) {
+    std::cerr << fmt::format("\r  run {} of {} ({} cached)  best chi2 {:.4g}  ETA {}   ", p.evaluations, p.planned,
+                             p.cached, p.best_chi2, clock_text(p.eta_seconds))
+              << std::flush;
+  };
+  if (args.design == "profile") return run_profile(args, study, options);
+
+  inverse::DesignResult result;
+  try {
+    result = inverse::run_design(study, options, design_options(args));
+  } catch (const inverse::InversionError& e) {
+    std::cerr << e.what() << "\n";
+    return kExitBadInput;
+  } catch (const inverse::CacheError& e) {
+    std::cerr << e.what() << "\n";
+    return kExitRunFailed;
+  }
+  std::cerr << "\n";
+  try {
+    write_runs_csv(fs::path(args.out) / "runs.csv", study, result);
+    write_report_md(fs::path(args.out) / "report.md", args, study, result);
+  } catch (const std::exception& e) {
+    std::cerr << args.out << ": --out: " << e.what() << "\n";
+    return kExitBadInput;
+  }
+  std::cout << fmt::format("{} runs ({} made, {} cached); wrote {}/runs.csv and report.md\n", result.runs.size(),
+                           result.run, result.cached, args.out);
+  std::cout << spread_sentence(result.within1, 1.0) << "\n" << spread_sentence(result.within4, 4.0) << "\n";
+  return kExitSuccess;
+}
+
+namespace {
+
+// The one-parameter profile: scan.csv and the table on stdout, as before the designs.
+int run_profile(const ScanArgs& args, const inverse::Study& study, const inverse::InversionOptions& options) {
+  inverse::ScanResult scan;
+  try {
+    scan = inverse::run_scan(study, options, args.parameter, args.points);
+  } catch (const inverse::InversionError& e) {
+    std::cerr << e.what() << "\n";
+    return kExitBadInput;
+  } catch (const inverse::CacheError& e) {
+    std::cerr << e.what() << "\n";
+    return kExitRunFailed;
+  }
+  // Table to stdout and DIR/scan.csv: the value, chi2, then each observation's simulated value.
+  std::string header = args.parameter + ",chi2";
+  for (const inverse::Observation& o : study.observations) header += "," + o.point + ":" + o.quantity;
+  std::ofstream csv(std::filesystem::path(args.out) / "scan.csv");
+  csv << header << "\n";
+  std::cout << header << "\n";
+  for (const inverse::Evaluation& e : scan.points) {
+    std::string row = fmt::format("{:.10g},{:.6g}", e.values[scan.parameter], e.chi2);
+    for (double v : e.simulated) row += fmt::format(",{:.6g}", v);
+    csv << row << "\n";
+    std::cout << row << "\n";
+  }
+  std::cerr << fmt::format("{} points: {} run, {} cached; wrote {}/scan.csv\n", scan.points.size(), scan.run,
+                           scan.cached, args.out);
+  return kExitSuccess;
+}
+
+}  // namespace
+
+}  // namespace ddafit::app
