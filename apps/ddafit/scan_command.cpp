@@ -11,6 +11,7 @@
 #include "apps/ddafit/exit_codes.hpp"
 #include "apps/ddafit/interrupt.hpp"
 #include "apps/ddafit/output_files.hpp"
+#include "apps/ddafit/scan_plots.hpp"
 #include "apps/ddafit/thread_budget.hpp"
 #include "forward/model_revision.hpp"
 #include "inverse/evaluation_cache.hpp"
@@ -81,6 +82,8 @@ void write_report_md(const fs::path& path, const ScanArgs& a, const inverse::Stu
   }
   md << "## Residual basal friction over the runs that fit\n\n";
   md << "- " << spread_sentence(r.within1, 1.0) << "\n- " << spread_sentence(r.within4, 4.0) << "\n\n";
+  md << "Charts: `chi2_along_*.png` (chi2 along each parameter), `chi2_map_*_*.png` (over each pair)"
+     << (r.effects.empty() ? "" : ", `morris.png`") << ".\n\n";
   md << "A scan samples; the bounds of the friction range are as fine as its points. Where the range "
         "reaches a parameter's search bound, widen the bound before quoting it.\n";
   if (!r.effects.empty()) {
@@ -190,6 +193,8 @@ int run_scan(const ScanArgs& args) {
     std::cerr << args.out << ": --out: " << e.what() << "\n";
     return kExitBadInput;
   }
+  std::string reason;
+  if (!plot_scan(args.out, study, result, reason)) std::cerr << "note: charts not drawn: " << reason << "\n";
   std::cout << fmt::format("{} runs ({} made, {} cached); wrote {}/runs.csv and report.md\n", result.runs.size(),
                            result.run, result.cached, args.out);
   std::cout << spread_sentence(result.within1, 1.0) << "\n" << spread_sentence(result.within4, 4.0) << "\n";
