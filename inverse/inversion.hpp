@@ -25,6 +25,7 @@ struct InversionOptions {
   std::function<void(const std::string&)> on_log;    // failed runs and other notes; must not throw
   int jobs = 1;  // forward runs at a time where points are independent (scan designs and profiles)
   std::function<void()> on_worker_start;  // first thing on each worker thread (its thread budget)
+  Objective::BatchRunner batch_runner;    // where batches run instead (MPI workers under mpirun)
 };
 
 // Set-up problems (the cache cannot be opened, or exists without --resume): one line.

@@ -58,6 +58,16 @@ class Objective {
   // Only the calling thread scores, writes the cache and reports progress, in the order of
   // `points`, so a batch gives the same log, cache and best point as the loop would.
   std::vector<Evaluation> evaluate_batch(const std::vector<std::vector<double>>& points, int jobs);
+
+  // The same with the runs made by `runner` (threads, MPI ranks): it is given the points
+  // that need a run and calls `done(i, result, seconds)` for each on the calling thread,
+  // in any order, before it returns.
+  using RunDone = std::function<void(size_t index, SimulationResult result, double seconds)>;
+  using BatchRunner = std::function<void(const std::vector<std::vector<double>>& points, const RunDone& done)>;
+  std::vector<Evaluation> evaluate_batch(const std::vector<std::vector<double>>& points, const BatchRunner& runner);
+  // How a batch runs its points: the scan command sets an MPI runner under mpirun;
+  // unset, batches run on `jobs` threads.
+  BatchRunner batch_runner;
   // Runs first on each worker thread (the command line sets the thread budget of a run).
   std::function<void()> on_worker_start;
 

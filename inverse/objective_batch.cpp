@@ -5,6 +5,8 @@
 #include <atomic>
 #include <chrono>
 #include <condition_variable>
+#include <deque>
+#include <stdexcept>
 #include <mutex>
 #include <set>
 #include <thread>
@@ -14,7 +16,51 @@
 namespace ddafit::inverse {
 
 std::vector<Evaluation> Objective::evaluate_batch(const std::vector<std::vector<double>>& points, int jobs) {
-  std::vector<Evaluation> out;
+  if (batch_runner) return evaluate_batch(points, batch_runner);
+  if (jobs <= 1) {
+    std::vector<Evaluation> out;
+    for (const auto& p : points) out.push_back(evaluate(p));
+    return out;
+  }
+  // `jobs` threads take points in turn; their results queue up for the calling thread.
+  const BatchRunner threads = [this, jobs](const std::vector<std::vector<double>>& todo, const RunDone& done) {
+    struct Finished {
+      size_t index;
+      SimulationResult run;
+      double seconds;
+    };
+    std::deque<Finished> queue;
+    std::mutex mutex;
+    std::condition_variable ready;
+    std::atomic<size_t> next{0};
+    const auto work = [&] {
+      if (on_worker_start) on_worker_start();
+      for (size_t i = next++; i < todo.size(); i = next++) {
+        const auto t0 = std::chrono::steady_clock::now();
+        SimulationResult run = run_guarded(forward_, study_.scene_path, point_overrides(study_, todo[i]));
+        const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        std::lock_guard<std::mutex> lock(mutex);
+        queue.push_back({i, std::move(run), seconds});
+        ready.notify_one();
+      }
+    };
+    std::vector<std::thread> workers;
+    for (int w = 0; w < std::min<int>(jobs, static_cast<int>(todo.size())); ++w) workers.emplace_back(work);
+    for (size_t received = 0; received < todo.size(); ++received) {
+      std::unique_lock<std::mutex> lock(mutex);
+      ready.wait(lock, [&] { return !queue.empty(); });
+      Finished f = std::move(queue.front());
+      queue.pop_front();
+      lock.unlock();
+      done(f.index, std::move(f.run), f.seconds);
+    }
+    for (std::thread& t : workers) t.join();
+  };
+  return evaluate_batch(points, threads);
+}
+
+std::vector<Evaluation> Objective::evaluate_batch(const std::vector<std::vector<double>>& points,
+                                                  const BatchRunner& runner) {
   // The points that need a forward run: neither seen in this process nor in the cache,
   // each once.
   std::vector<size_t> todo;
@@ -24,52 +70,41 @@ std::vector<Evaluation> Objective::evaluate_batch(const std::vector<std::vector<
     if (seen_.count(key) || !keys.insert(key).second || cache_.find(key)) continue;
     todo.push_back(k);
   }
-  if (jobs <= 1 || todo.size() <= 1) {
-    for (const auto& p : points) out.push_back(evaluate(p));
-    return out;
-  }
+  std::vector<std::vector<double>> todo_points;
+  for (size_t k : todo) todo_points.push_back(points[k]);
 
+  // Results arrive in any order; each point is recorded in the order of `points` as soon
+  // as all before it are, so progress moves while runs finish.
   struct Slot {
     SimulationResult run;
     double seconds = 0.0;
     bool done = false;
   };
   std::vector<Slot> slots(todo.size());
-  std::mutex mutex;
-  std::condition_variable finished;
-  std::atomic<size_t> next{0};
-  const auto work = [&] {
-    if (on_worker_start) on_worker_start();
-    for (size_t i = next++; i < todo.size(); i = next++) {
-      const auto t0 = std::chrono::steady_clock::now();
-      SimulationResult run = run_guarded(forward_, study_.scene_path, point_overrides(study_, points[todo[i]]));
-      const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-      std::lock_guard<std::mutex> lock(mutex);
-      slots[i].run = std::move(run);
-      slots[i].seconds = seconds;
-      slots[i].done = true;
-      finished.notify_all();
+  std::vector<Evaluation> out;
+  size_t slot = 0;
+  const auto record_ready = [&] {
+    while (out.size() < points.size()) {
+      const size_t k = out.size();
+      if (slot < todo.size() && todo[slot] == k) {
+        if (!slots[slot].done) return;
+        out.push_back(record(points[k], &slots[slot].run, slots[slot].seconds));
+        slots[slot].run = {};
+        ++slot;
+      } else {
+        out.push_back(evaluate(points[k]));
+      }
     }
   };
-  std::vector<std::thread> workers;
-  for (int w = 0; w < std::min<int>(jobs, static_cast<int>(todo.size())); ++w) workers.emplace_back(work);
-
-  // Record in the order of `points`, each run as soon as it is there.
-  size_t slot = 0;
-  for (size_t k = 0; k < points.size(); ++k) {
-    if (slot < todo.size() && todo[slot] == k) {
-      std::unique_lock<std::mutex> lock(mutex);
-      finished.wait(lock, [&] { return slots[slot].done; });
-      SimulationResult run = std::move(slots[slot].run);
-      const double seconds = slots[slot].seconds;
-      lock.unlock();
-      out.push_back(record(points[k], &run, seconds));
-      ++slot;
-    } else {
-      out.push_back(evaluate(points[k]));
-    }
+  record_ready();
+  if (!todo_points.empty()) {
+    runner(todo_points, [&](size_t i, SimulationResult run, double seconds) {
+      slots[i] = {std::move(run), seconds, true};
+      record_ready();
+    });
   }
-  for (std::thread& t : workers) t.join();
+  record_ready();
+  if (out.size() != points.size()) throw std::logic_error("evaluate_batch: the runner left points without a result");
   return out;
 }
 

@@ -79,6 +79,8 @@ struct ScanArgs {
   int jobs = 1;           // forward runs at a time
   int threads = 0;        // per run; 0 = the core count / jobs
   bool dry_run = false;
+  double run_timeout = 3600.0;  // s; under mpirun a run past this is killed (and retried once)
+  int mpi_rank = 0, mpi_size = 1;  // under mpirun: this process's rank and the world's size
   std::string out = "ddafit-scan";
   bool resume = false;
 };

@@ -8,6 +8,7 @@
 
 #include "apps/ddafit/commands.hpp"
 #include "apps/ddafit/exit_codes.hpp"
+#include "apps/ddafit/mpi_pool.hpp"
 #include "apps/ddafit/thread_budget.hpp"
 
 namespace {
@@ -131,6 +132,9 @@ int main(int argc, char** argv) {
   scan->add_option("--jobs", sc.jobs, "forward runs at a time (jobs x threads <= cores)")
       ->capture_default_str()
       ->check(CLI::Range(1, 256));
+  scan->add_option("--run-timeout", sc.run_timeout, "s; under mpirun a forward run past this is killed, retried once")
+      ->capture_default_str()
+      ->check(within(1.0, 1e7));
   scan->add_flag("--dry-run", sc.dry_run, "print the plan (runs, cached, estimated wall time) and stop");
   scan->add_option("--out", sc.out, "output folder: runs.csv or scan.csv, report.md and the evaluation cache")
       ->capture_default_str();
@@ -192,6 +196,14 @@ int main(int argc, char** argv) {
   }
   set_thread_budget(threads);
   sc.threads = threads;
+  // Under mpirun every rank runs this; `scan` splits into a manager and workers, and the
+  // guard ends MPI on every way out.
+  const MpiWorld world = mpi_start(&argc, &argv);
+  struct MpiGuard {
+    ~MpiGuard() { mpi_stop(); }
+  } mpi_guard;
+  sc.mpi_rank = world.rank;
+  sc.mpi_size = world.size;
   // Each command reports its own errors in one line; this is the net under them, so that
   // an error nobody foresaw still ends as a message and exit 2, never as an abort.
   try {

@@ -10,6 +10,7 @@
 #include "apps/ddafit/commands.hpp"
 #include "apps/ddafit/exit_codes.hpp"
 #include "apps/ddafit/interrupt.hpp"
+#include "apps/ddafit/mpi_pool.hpp"
 #include "apps/ddafit/output_files.hpp"
 #include "apps/ddafit/scan_plots.hpp"
 #include "apps/ddafit/thread_budget.hpp"
@@ -123,7 +124,20 @@ int run_scan(const ScanArgs& args) {
                              args.jobs, args.threads, args.jobs * args.threads, cores);
     return kExitBadInput;
   }
-  const int per_run = args.threads > 0 ? args.threads : std::max(1, cores / args.jobs);
+  const int per_run = args.threads > 0 ? args.threads : std::max(1, cores / std::max(args.jobs, args.mpi_size));
+  if (args.mpi_rank > 0) {
+    // A worker: forward runs for rank 0 until it says stop; it writes and prints nothing.
+    mpi_worker(study, per_run, args.run_timeout);
+    return kExitSuccess;
+  }
+  // Rank 0 under mpirun: whatever way this returns, the workers are told to stop.
+  const MpiWorld world{args.mpi_rank, args.mpi_size};
+  struct Release {
+    MpiWorld world;
+    ~Release() {
+      if (world.size > 1) mpi_release_workers(world);
+    }
+  } release{world};
   inverse::InversionOptions options;
   options.out_dir = args.out;
   options.resume = args.resume;
@@ -131,6 +145,7 @@ int run_scan(const ScanArgs& args) {
   options.on_log = [](const std::string& line) { std::cerr << "note: " << line << "\n"; };
   options.jobs = args.jobs;
   options.on_worker_start = [per_run] { set_worker_threads(per_run); };
+  if (world.size > 1) options.batch_runner = mpi_batch_runner(world);
   if (args.jobs > 1) set_worker_threads(per_run);
 
   int profiled = -1;
@@ -154,11 +169,13 @@ int run_scan(const ScanArgs& args) {
   }
   const inverse::DesignPlan plan = inverse::plan_points(study, options, points);
   const long left = plan.distinct - plan.cached;
-  std::cout << fmt::format("plan: {} design, {} runs ({} distinct, {} in the cache, {} to run, {} at a time)", args.design,
-                           plan.points, plan.distinct, plan.cached, left, args.jobs);
+  const int at_a_time = world.size > 1 ? world.size - 1 : args.jobs;
+  std::cout << fmt::format("plan: {} design, {} runs ({} distinct, {} in the cache, {} to run, {} at a time{})", args.design,
+                           plan.points, plan.distinct, plan.cached, left, at_a_time,
+                           world.size > 1 ? " on MPI worker ranks" : "");
   if (plan.mean_cached_seconds > 0.0)
     std::cout << fmt::format("; about {} of wall from the cached runs' {:.1f} s each",
-                             clock_text(plan.mean_cached_seconds * static_cast<double>(left) / args.jobs),
+                             clock_text(plan.mean_cached_seconds * static_cast<double>(left) / at_a_time),
                              plan.mean_cached_seconds);
   std::cout << std::endl;
   if (args.dry_run) return kExitSuccess;
