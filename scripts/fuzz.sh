@@ -25,6 +25,7 @@ mkdir -p "build-fuzz/corpus/$target" fuzz/findings
 # The YAML dictionary words help the fuzzer past the parser into the readers' checks.
 parallel=()
 [ "$jobs" -gt 1 ] && parallel=(-jobs="$jobs" -workers="$jobs")
-ASAN_OPTIONS=detect_leaks=0 "./build-fuzz/fuzz/fuzz_$target" -max_total_time="$seconds" "${parallel[@]}" -timeout=20 -rss_limit_mb=4096 -max_len=65536 -print_final_stats=1 \
+# fuzz/ubsan.supp: CGAL's own downcasts in its arrangement iterators (not ddafit's code).
+UBSAN_OPTIONS=suppressions=fuzz/ubsan.supp:print_stacktrace=1 ASAN_OPTIONS=detect_leaks=0 "./build-fuzz/fuzz/fuzz_$target" -max_total_time="$seconds" "${parallel[@]}" -timeout=20 -rss_limit_mb=4096 -max_len=65536 -print_final_stats=1 \
   -dict=fuzz/yaml.dict -artifact_prefix=fuzz/findings/"$target"- \
   "build-fuzz/corpus/$target" "fuzz/corpus/$target" "fuzz/regressions/$target"
