@@ -18,6 +18,7 @@ packages=(
   gnuplot-nox                    # PNG charts (ddafit mesh, simulate --plots)
   clang libfuzzer-14-dev         # scripts/fuzz.sh: libFuzzer targets of the input readers
   openmpi-bin libopenmpi-dev     # scans under mpirun (a manager rank and worker ranks)
+  slurm-wlm munge                # scan --slurm, tested against a real one-node cluster
 )
 if [ "$(id -u)" -ne 0 ]; then sudo=sudo; else sudo=; fi
 $sudo apt-get update -qq

@@ -81,6 +81,11 @@ struct ScanArgs {
   bool dry_run = false;
   double run_timeout = 3600.0;  // s; under mpirun a run past this is killed (and retried once)
   int mpi_rank = 0, mpi_size = 1;  // under mpirun: this process's rank and the world's size
+  std::string slurm_dir;    // --slurm: write a job array here instead of running
+  int array_limit = 4;      // --slurm: tasks at a time (sbatch --array=...%K)
+  std::string collect_dir;  // --collect: load a job array's results into the cache, then report
+  std::string task_dir;     // --task (set by job.sh): run one point of DIR/points.txt
+  long task_index = -1;     // --task-index
   std::string out = "ddafit-scan";
   bool resume = false;
 };

@@ -135,6 +135,14 @@ int main(int argc, char** argv) {
   scan->add_option("--run-timeout", sc.run_timeout, "s; under mpirun a forward run past this is killed, retried once")
       ->capture_default_str()
       ->check(within(1.0, 1e7));
+  scan->add_option("--slurm", sc.slurm_dir, "write a SLURM job array for the points not yet cached into this folder");
+  scan->add_option("--array-limit", sc.array_limit, "--slurm: array tasks at a time")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 100000));
+  scan->add_option("--collect", sc.collect_dir, "load a --slurm folder's results into the cache, then report");
+  scan->add_option("--task", sc.task_dir, "(used by --slurm's job.sh) run one point of this folder's points.txt")
+      ->group("");
+  scan->add_option("--task-index", sc.task_index, "(used by job.sh) the point")->group("");
   scan->add_flag("--dry-run", sc.dry_run, "print the plan (runs, cached, estimated wall time) and stop");
   scan->add_option("--out", sc.out, "output folder: runs.csv or scan.csv, report.md and the evaluation cache")
       ->capture_default_str();

@@ -8,9 +8,9 @@
 
 #include <chrono>
 #include <cstdlib>
-#include <nlohmann/json.hpp>
 #include <vector>
 
+#include "apps/ddafit/run_codec.hpp"
 #include "apps/ddafit/thread_budget.hpp"
 #include "inverse/forward_call.hpp"
 
@@ -18,34 +18,6 @@ namespace ddafit::app {
 namespace {
 
 constexpr int kTagWork = 1, kTagResult = 2, kTagStop = 3;
-
-// The part of a run the objective reads (status, message, the points' summaries, times):
-// what crosses from a worker's child to the worker and from the worker to rank 0.
-std::string encode(const SimulationResult& r, double seconds) {
-  nlohmann::json j;
-  j["status"] = static_cast<int>(r.summary.status);
-  j["message"] = r.summary.message;
-  j["simulated_time"] = r.summary.run.simulated_time;
-  j["seconds"] = seconds;
-  j["points"] = nlohmann::json::array();
-  for (const PointSummary& p : r.summary.points)
-    j["points"].push_back({p.name, p.max_lateral_displacement, p.max_total_displacement, p.peak_lateral_velocity,
-                           p.peak_total_velocity, p.duration, p.stopped});
-  return j.dump();
-}
-
-SimulationResult decode(const std::string& text, double* seconds) {
-  SimulationResult r;
-  const nlohmann::json j = nlohmann::json::parse(text);
-  r.summary.status = static_cast<RunStatus>(j["status"].get<int>());
-  r.summary.message = j["message"].get<std::string>();
-  r.summary.run.simulated_time = j["simulated_time"].get<double>();
-  *seconds = j["seconds"].get<double>();
-  for (const auto& p : j["points"])
-    r.summary.points.push_back({p[0].get<std::string>(), p[1].get<double>(), p[2].get<double>(), p[3].get<double>(),
-                                p[4].get<double>(), p[5].get<double>(), p[6].get<bool>()});
-  return r;
-}
 
 SimulationResult failed(const std::string& why) {
   SimulationResult r;
@@ -69,7 +41,7 @@ std::string run_in_child(const inverse::Study& study, const std::vector<double>&
     close(fds[0]);
     const SimulationResult r = inverse::run_forward(study.scene_path, inverse::point_overrides(study, values));
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    const std::string text = encode(r, seconds);
+    const std::string text = encode_run(r, seconds);
     for (size_t at = 0; at < text.size();) {
       const ssize_t n = write(fds[1], text.data() + at, text.size() - at);
       if (n <= 0) _exit(3);
@@ -157,7 +129,7 @@ inverse::Objective::BatchRunner mpi_batch_runner(const MpiWorld& world) {
       // The first 20 characters are the point's index; the rest is the encoded run.
       const size_t index = std::stoul(text.substr(0, 20));
       double seconds = 0.0;
-      SimulationResult run = decode(text.substr(20), &seconds);
+      SimulationResult run = decode_run(text.substr(20), &seconds);
       if (next < points.size()) send(status.MPI_SOURCE);
       done(index, std::move(run), seconds);
     }
@@ -182,7 +154,7 @@ void mpi_worker(const inverse::Study& study, int threads, double timeout) {
     // A crash or a hang is retried once: a node's hiccup should not count as physics.
     std::string why, text = run_in_child(study, values, timeout, why);
     if (text.empty()) text = run_in_child(study, values, timeout, why);
-    if (text.empty()) text = encode(failed(why + ", twice (worker rank " + std::to_string(status.MPI_SOURCE) + ")"), 0.0);
+    if (text.empty()) text = encode_run(failed(why + ", twice (worker rank " + std::to_string(status.MPI_SOURCE) + ")"), 0.0);
     char index[21];
     std::snprintf(index, sizeof index, "%-20lu", static_cast<unsigned long>(message[0]));
     const std::string reply = std::string(index, 20) + text;

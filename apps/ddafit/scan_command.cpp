@@ -4,6 +4,8 @@
 
 #include <filesystem>
 #include <fstream>
+#include <memory>
+#include <set>
 #include <iostream>
 #include <thread>
 
@@ -13,6 +15,7 @@
 #include "apps/ddafit/mpi_pool.hpp"
 #include "apps/ddafit/output_files.hpp"
 #include "apps/ddafit/scan_plots.hpp"
+#include "apps/ddafit/slurm_scan.hpp"
 #include "apps/ddafit/thread_budget.hpp"
 #include "forward/model_revision.hpp"
 #include "inverse/evaluation_cache.hpp"
@@ -125,6 +128,7 @@ int run_scan(const ScanArgs& args) {
     return kExitBadInput;
   }
   const int per_run = args.threads > 0 ? args.threads : std::max(1, cores / std::max(args.jobs, args.mpi_size));
+  if (!args.task_dir.empty()) return run_slurm_task(args, study);
   if (args.mpi_rank > 0) {
     // A worker: forward runs for rank 0 until it says stop; it writes and prints nothing.
     mpi_worker(study, per_run, args.run_timeout);
@@ -179,6 +183,28 @@ int run_scan(const ScanArgs& args) {
                              plan.mean_cached_seconds);
   std::cout << std::endl;
   if (args.dry_run) return kExitSuccess;
+  if (!args.slurm_dir.empty()) {
+    std::vector<std::vector<double>> todo;
+    {
+      const fs::path cache_path = fs::path(args.out) / "evaluations.sqlite";
+      std::set<std::string> keys;
+      std::unique_ptr<inverse::EvaluationCache> cache;
+      if (fs::exists(cache_path))
+        cache = std::make_unique<inverse::EvaluationCache>(cache_path.string(), options.model_version,
+                                                           inverse::scene_input_hash(study));
+      for (const auto& x : points) {
+        const std::string key = inverse::point_key(study, x);
+        if (keys.insert(key).second && !(cache && cache->find(key))) todo.push_back(x);
+      }
+    }
+    return write_slurm_job(args, study, todo);
+  }
+  if (!args.collect_dir.empty()) {
+    const long missing = collect_slurm_results(args, study, options.model_version);
+    if (missing < 0) return kExitBadInput;
+    if (missing > 0) return kExitRunFailed;
+    options.resume = true;  // every point is now in the cache: the report comes from it
+  }
   if (const std::string problem = prepare_output_folder(args.out); !problem.empty()) {
     std::cerr << problem << "\n";
     return kExitBadInput;
