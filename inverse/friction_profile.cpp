@@ -101,6 +101,16 @@ BoundingFriction profile_friction(Objective& objective, const Study& study, cons
                                      [](const ProfilePoint& a, double v) { return a.value < v; });
     f.profile.insert(at, pt);
   };
+  // The grid's runs are independent when the other parameters stay at the best fit: they
+  // run as one batch (--jobs at a time); add_point then finds each in the objective's log.
+  if (!reoptimize || !any_other) {
+    std::vector<std::vector<double>> grid;
+    for (int k = 0; k < points; ++k) {
+      grid.push_back(best);
+      grid.back()[parameter] = p.lower + (p.upper - p.lower) * k / (points - 1);
+    }
+    objective.evaluate_batch(grid, objective.jobs);
+  }
   for (int k = 0; k < points; ++k) add_point(p.lower + (p.upper - p.lower) * k / (points - 1));
   add_point(f.best_value);
 

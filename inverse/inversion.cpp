@@ -55,6 +55,9 @@ InversionSummary run_inversion(const Study& study, const InversionOptions& optio
                          "remove the file to start over");
 
   Objective objective(study, cache, forward);
+  objective.jobs = options.jobs;
+  objective.on_worker_start = options.on_worker_start;
+  objective.batch_runner = options.batch_runner;
   objective.on_progress = options.on_progress;
   objective.on_log = [&](const std::string& line) {
     out.notes.push_back(line);

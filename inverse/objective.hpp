@@ -68,6 +68,8 @@ class Objective {
   // How a batch runs its points: the scan command sets an MPI runner under mpirun;
   // unset, batches run on `jobs` threads.
   BatchRunner batch_runner;
+  // Forward runs at a time in the batches the inversion makes itself (the profile's grid).
+  int jobs = 1;
   // Runs first on each worker thread (the command line sets the thread budget of a run).
   std::function<void()> on_worker_start;
 

@@ -6,6 +6,7 @@
 #include <filesystem>
 
 #include "inverse/evaluation_cache.hpp"
+#include "inverse/inversion.hpp"
 #include "inverse/objective.hpp"
 #include "inverse/scan_design.hpp"
 #include "inverse/study.hpp"
@@ -82,6 +83,18 @@ TEST(ScanDesign, TwoJobsGiveTheSameChi2PerPointAsOne) {
   }
   EXPECT_EQ(calls_one.load(), calls_two.load());  // no point run twice in either
   EXPECT_EQ(one.best, two.best);
+}
+
+TEST(ScanDesign, InvertWithTwoJobsReportsTheSameBoundingFriction) {
+  // The profile's grid runs as one batch; with two jobs the fit, the grid and the
+  // bisection must see the same chi2 values and end on the same bound.
+  const Study study = read_study(kStudy);
+  const InversionSummary one = run_inversion(study, options_in(fresh_dir("invert_jobs_1"), false, 1));
+  const InversionSummary two = run_inversion(study, options_in(fresh_dir("invert_jobs_2"), false, 2));
+  ASSERT_TRUE(one.friction.available && two.friction.available);
+  EXPECT_EQ(one.friction.delta4.mu_low, two.friction.delta4.mu_low);
+  EXPECT_EQ(one.friction.delta1.mu_low, two.friction.delta1.mu_low);
+  EXPECT_EQ(one.evaluations, two.evaluations);
 }
 
 }  // namespace

@@ -58,6 +58,8 @@ struct StableArgs {
 int run_stable(const StableArgs& args);
 
 struct InvertArgs {
+  int jobs = 1;     // forward runs at a time where they are independent (the profile's grid)
+  int threads = 0;  // per run (the --threads budget)
   std::string study;
   std::string out = "ddafit-invert";
   bool resume = false;  // reuse OUT/evaluations.sqlite

@@ -6,12 +6,14 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <thread>
 
 #include "forward/model_revision.hpp"
 #include "apps/ddafit/commands.hpp"
 #include "apps/ddafit/exit_codes.hpp"
 #include "apps/ddafit/interrupt.hpp"
 #include "apps/ddafit/output_files.hpp"
+#include "apps/ddafit/thread_budget.hpp"
 #include "inverse/evaluation_cache.hpp"
 #include "inverse/forward_call.hpp"
 #include "inverse/inversion.hpp"
@@ -95,6 +97,10 @@ int run_invert(const InvertArgs& given) {
   options.resume = args.resume;
   options.budget = args.budget;
   options.model_version = std::string(DDAFIT_VERSION) + "+" + kModelRevision;
+  options.jobs = args.jobs;
+  const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  const int per_run = args.threads > 0 ? args.threads : std::max(1, cores / args.jobs);
+  options.on_worker_start = [per_run] { set_worker_threads(per_run); };
   if (!args.quiet) {
     options.on_progress = [](const inverse::Progress& p) {
       // The plan counts the fits and the profile grid; the bisection of the profile's

@@ -111,6 +111,9 @@ int main(int argc, char** argv) {
   invert->add_option("--budget", inv.budget, "objective evaluations per fit (default: the study's method.budget)")
       ->check(CLI::PositiveNumber);
   invert->add_flag("--quiet", inv.quiet, "print nothing but errors");
+  invert->add_option("--jobs", inv.jobs, "forward runs at a time where independent (the profile's grid)")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 256));
   invert->add_flag("--check", inv.check, "read and check the study and its scene, print the plan, run nothing");
 
   ScanArgs sc;
@@ -204,6 +207,7 @@ int main(int argc, char** argv) {
   }
   set_thread_budget(threads);
   sc.threads = threads;
+  inv.threads = threads;
   // Under mpirun every rank runs this; `scan` splits into a manager and workers, and the
   // guard ends MPI on every way out.
   const MpiWorld world = mpi_start(&argc, &argv);
