@@ -74,7 +74,8 @@ std::string collide(const BlockSystem& s, const SubstepShapes& shapes, const std
     geometry[k] = collide_polygons(std::span<const Vec2>(corners_a, na), std::span<const Vec2>(corners_b, nb),
                                    settings.margin + reach, settings.linear_slop,
                                    solid.subspan(shapes.pieces[a].first, na),
-                                   solid.subspan(shapes.pieces[b].first, nb), settings.margin);
+                                   solid.subspan(shapes.pieces[b].first, nb), settings.margin,
+                                   s.blocks[shapes.pieces[a].block].fixed || s.blocks[shapes.pieces[b].block].fixed);
   }
   std::vector<int> touching;
   for (long k = 0; k < n; ++k)

@@ -166,7 +166,7 @@ Ends closest_ends(const Vec2& p1, const Vec2& q1, const Vec2& p2, const Vec2& q2
 
 Manifold collide_polygons(std::span<const Vec2> a, std::span<const Vec2> b, double max_distance,
                           double linear_slop, std::span<const char> a_solid, std::span<const char> b_solid,
-                          double max_depth) {
+                          double max_depth, bool flip_for_cuts) {
   Manifold m;
   if (max_depth < 0.0) max_depth = max_distance;
   if (a.size() < 3 || b.size() < 3) return m;
@@ -213,7 +213,7 @@ Manifold collide_polygons(std::span<const Vec2> a, std::span<const Vec2> b, doub
   // Without this, a toe block on Vajont section VII whose corner sat in the valley corner
   // read the opposite bank's face as turned away from it, got no point, and went into the
   // bank (the first axis was its own face; the bank piece's side facing it was a cut).
-  if (incident.facing > 0.0) {
+  if (flip_for_cuts && incident.facing > 0.0) {
     if ((flip ? axis_a.edge : axis_b.edge) < 0) return m;
     flip = !flip;
     incident = incident_for(flip);
