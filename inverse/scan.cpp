@@ -42,6 +42,7 @@ ScanResult run_scan(const Study& study, const InversionOptions& options, const s
   objective.set_planned(points);
   objective.on_worker_start = options.on_worker_start;
   objective.batch_runner = options.batch_runner;
+  objective.jobs = options.jobs;
   out.points = objective.evaluate_batch(profile_points(study, out.parameter, points), options.jobs);
   out.cached = objective.progress().cached;
   out.run = objective.progress().run;

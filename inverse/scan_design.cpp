@@ -127,6 +127,7 @@ DesignResult run_design(const Study& study, const InversionOptions& options, con
   objective.on_log = options.on_log;
   objective.on_worker_start = options.on_worker_start;
   objective.batch_runner = options.batch_runner;
+  objective.jobs = options.jobs;
   const std::vector<std::vector<double>> points = design_values(study, design);
   objective.set_planned(static_cast<long>(points.size()));
   r.runs = objective.evaluate_batch(points, options.jobs);

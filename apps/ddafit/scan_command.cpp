@@ -149,7 +149,10 @@ int run_scan(const ScanArgs& args) {
   options.on_log = [](const std::string& line) { std::cerr << "note: " << line << "\n"; };
   options.jobs = args.jobs;
   options.on_worker_start = [per_run] { set_worker_threads(per_run); };
-  if (world.size > 1) options.batch_runner = mpi_batch_runner(world);
+  if (world.size > 1) {
+    options.batch_runner = mpi_batch_runner(world);
+    options.jobs = world.size - 1;  // runs at a time, for the ETA
+  }
   if (args.jobs > 1) set_worker_threads(per_run);
 
   int profiled = -1;
