@@ -216,6 +216,12 @@ int main(int argc, char** argv) {
   } mpi_guard;
   sc.mpi_rank = world.rank;
   sc.mpi_size = world.size;
+  if (world.size > 1 && !*scan) {
+    // Only `scan` divides its work between ranks; any other command would run K copies
+    // writing the same files. Rank 0 runs it alone.
+    if (world.rank > 0) return kExitSuccess;
+    std::cerr << "note: only `ddafit scan` uses MPI ranks; rank 0 runs this command alone\n";
+  }
   // Each command reports its own errors in one line; this is the net under them, so that
   // an error nobody foresaw still ends as a message and exit 2, never as an abort.
   try {
