@@ -115,6 +115,7 @@ Evaluation Objective::record(const std::vector<double>& values, SimulationResult
   if (e.failed && on_log)
     on_log("evaluation " + std::to_string(log_.size() + 1) + ": counted as chi2 = " + std::to_string(e.chi2) +
            " because the forward run failed: " + e.message);
+  if (e.failed) ++failed_;
   seen_[key] = log_.size();
   log_.push_back(std::move(e));
   best_chi2_ = std::min(best_chi2_, log_.back().chi2);
@@ -135,6 +136,8 @@ Progress Objective::progress() const {
   Progress p;
   p.evaluations = static_cast<long>(log_.size());
   p.cached = cached_;
+  p.failed = failed_;
+  p.running = running_;
   p.run = run_;
   p.best_chi2 = best_chi2_;
   p.mean_run_seconds = run_ > 0 ? seconds_run_ / run_ : (cached_ > 0 ? seconds_cached_ / cached_ : 0.0);

@@ -35,6 +35,8 @@ struct Evaluation {
 // What the progress line shows.
 struct Progress {
   long evaluations = 0;  // objective calls that needed a distinct point
+  long failed = 0;       // of which the forward run failed
+  long running = 0;      // forward runs under way in a batch (jobs, MPI workers)
   long cached = 0;       // of which served from the cache file
   long run = 0;          // of which forward runs made by this process
   double best_chi2 = 0.0;  // over the whole study so far
@@ -99,7 +101,7 @@ class Objective {
   long best_ = -1;
   std::vector<HistoryRow> best_history_;
   double best_chi2_ = std::numeric_limits<double>::infinity();  // over the whole study, for progress
-  long cached_ = 0, run_ = 0, planned_ = 0;
+  long cached_ = 0, run_ = 0, planned_ = 0, failed_ = 0, running_ = 0;
   double seconds_run_ = 0.0, seconds_cached_ = 0.0;
 };
 

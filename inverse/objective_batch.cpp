@@ -98,10 +98,16 @@ std::vector<Evaluation> Objective::evaluate_batch(const std::vector<std::vector<
   };
   record_ready();
   if (!todo_points.empty()) {
+    // Runs under way: as many as run at a time, until fewer are left.
+    const long at_a_time = std::max(1, jobs);
+    long left = static_cast<long>(todo_points.size());
+    running_ = std::min(at_a_time, left);
     runner(todo_points, [&](size_t i, SimulationResult run, double seconds) {
       slots[i] = {std::move(run), seconds, true};
+      running_ = std::min(at_a_time, --left);
       record_ready();
     });
+    running_ = 0;
   }
   record_ready();
   if (out.size() != points.size()) throw std::logic_error("evaluate_batch: the runner left points without a result");

@@ -215,8 +215,9 @@ int run_scan(const ScanArgs& args) {
   exit_on_stop_signals("ddafit scan: interrupted; every finished forward run is kept in " + args.out +
                        "/evaluations.sqlite: run the same command with --resume to go on from there\n");
   options.on_progress = [](const inverse::Progress& p) {
-    std::cerr << fmt::format("\r  run {} of {} ({} cached)  best chi2 {:.4g}  ETA {}   ", p.evaluations, p.planned,
-                             p.cached, p.best_chi2, clock_text(p.eta_seconds))
+    std::cerr << fmt::format("\r  done {} of {} ({} cached, {} failed), {} running  best chi2 {:.4g}  ETA {}   ",
+                             p.evaluations, p.planned, p.cached, p.failed, p.running, p.best_chi2,
+                             clock_text(p.eta_seconds))
               << std::flush;
   };
   if (args.design == "profile") return run_profile(args, study, options);
