@@ -39,26 +39,37 @@ double residual_friction(const Study& study, int parameter, double peak_angle, d
   return std::tan(residual_angle * M_PI / 180.0);
 }
 
+std::unique_ptr<EvaluationCache> open_cache(const Study& study, const InversionOptions& options, std::string* path) {
+  std::error_code ec;
+  std::filesystem::create_directories(options.out_dir, ec);
+  if (ec) throw InversionError(options.out_dir + ": --out: cannot create the folder (" + ec.message() + ")");
+  *path = (std::filesystem::path(options.out_dir) / "evaluations.sqlite").string();
+  auto cache = std::make_unique<EvaluationCache>(*path, options.model_version, scene_input_hash(study));
+  if (!options.resume && cache->count() > 0)
+    throw InversionError(*path + ": holds " + std::to_string(cache->count()) +
+                         " evaluations of this study's scene from an earlier run; add --resume to reuse them, or "
+                         "remove the file to start over");
+  return cache;
+}
+
+void apply_options(Objective& objective, const InversionOptions& options) {
+  objective.jobs = options.jobs;
+  objective.on_worker_start = options.on_worker_start;
+  objective.batch_runner = options.batch_runner;
+  objective.on_progress = options.on_progress;
+  objective.on_log = options.on_log;
+}
+
 InversionSummary run_inversion(const Study& study, const InversionOptions& options, const ForwardModel& forward) {
   const auto t0 = std::chrono::steady_clock::now();
   InversionSummary out;
   out.model_version = options.model_version;
   out.scene_hash = scene_input_hash(study);
-  std::error_code ec;
-  std::filesystem::create_directories(options.out_dir, ec);
-  if (ec) throw InversionError(options.out_dir + ": --out: cannot create the folder (" + ec.message() + ")");
-  out.cache_path = (std::filesystem::path(options.out_dir) / "evaluations.sqlite").string();
-  EvaluationCache cache(out.cache_path, out.model_version, out.scene_hash);
-  if (!options.resume && cache.count() > 0)
-    throw InversionError(out.cache_path + ": holds " + std::to_string(cache.count()) +
-                         " evaluations of this study's scene from an earlier run; add --resume to reuse them, or "
-                         "remove the file to start over");
+  std::unique_ptr<EvaluationCache> cache_file = open_cache(study, options, &out.cache_path);
+  EvaluationCache& cache = *cache_file;
 
   Objective objective(study, cache, forward);
-  objective.jobs = options.jobs;
-  objective.on_worker_start = options.on_worker_start;
-  objective.batch_runner = options.batch_runner;
-  objective.on_progress = options.on_progress;
+  apply_options(objective, options);
   objective.on_log = [&](const std::string& line) {
     out.notes.push_back(line);
     if (options.on_log) options.on_log(line);

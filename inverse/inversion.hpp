@@ -5,6 +5,7 @@
 #pragma once
 
 #include <functional>
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -94,6 +95,12 @@ struct InversionSummary {
   std::string model_version, scene_hash, cache_path;
   std::vector<std::string> notes;  // failed runs and warnings, as logged
 };
+
+// The evaluation cache in options.out_dir (the folder is created): refused with an
+// InversionError when it holds runs and options.resume is not set. *path gets its file.
+std::unique_ptr<EvaluationCache> open_cache(const Study& study, const InversionOptions& options, std::string* path);
+// The options' observers and batch settings, onto an objective.
+void apply_options(Objective& objective, const InversionOptions& options);
 
 // mu_b for a value of the profiled parameter.
 double residual_friction(const Study& study, int parameter, double peak_angle, double value);

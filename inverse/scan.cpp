@@ -28,21 +28,10 @@ ScanResult run_scan(const Study& study, const InversionOptions& options, const s
   if (out.parameter < 0 || study.parameters[out.parameter].discrete())
     throw InversionError(study.path + ": --parameter: '" + parameter + "' is not a continuous parameter of the study");
   if (points < 2) throw InversionError(study.path + ": --points: give at least 2");
-  std::error_code ec;
-  std::filesystem::create_directories(options.out_dir, ec);
-  if (ec) throw InversionError(options.out_dir + ": --out: cannot create the folder (" + ec.message() + ")");
-  out.cache_path = (std::filesystem::path(options.out_dir) / "evaluations.sqlite").string();
-  EvaluationCache cache(out.cache_path, options.model_version, scene_input_hash(study));
-  if (!options.resume && cache.count() > 0)
-    throw InversionError(out.cache_path + ": holds " + std::to_string(cache.count()) +
-                         " evaluations from an earlier run; add --resume to reuse them, or remove the file");
-  Objective objective(study, cache, forward);
-  objective.on_progress = options.on_progress;
-  objective.on_log = options.on_log;
+  const std::unique_ptr<EvaluationCache> cache = open_cache(study, options, &out.cache_path);
+  Objective objective(study, *cache, forward);
+  apply_options(objective, options);
   objective.set_planned(points);
-  objective.on_worker_start = options.on_worker_start;
-  objective.batch_runner = options.batch_runner;
-  objective.jobs = options.jobs;
   out.points = objective.evaluate_batch(profile_points(study, out.parameter, points), options.jobs);
   out.cached = objective.progress().cached;
   out.run = objective.progress().run;

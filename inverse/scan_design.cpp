@@ -114,20 +114,9 @@ DesignPlan plan_points(const Study& study, const InversionOptions& options, cons
 DesignResult run_design(const Study& study, const InversionOptions& options, const DesignOptions& design,
                         const ForwardModel& forward) {
   DesignResult r;
-  std::error_code ec;
-  std::filesystem::create_directories(options.out_dir, ec);
-  if (ec) throw InversionError(options.out_dir + ": --out: cannot create the folder (" + ec.message() + ")");
-  r.cache_path = (std::filesystem::path(options.out_dir) / "evaluations.sqlite").string();
-  EvaluationCache cache(r.cache_path, options.model_version, scene_input_hash(study));
-  if (!options.resume && cache.count() > 0)
-    throw InversionError(r.cache_path + ": holds " + std::to_string(cache.count()) +
-                         " evaluations from an earlier run; add --resume to reuse them, or remove the file");
-  Objective objective(study, cache, forward);
-  objective.on_progress = options.on_progress;
-  objective.on_log = options.on_log;
-  objective.on_worker_start = options.on_worker_start;
-  objective.batch_runner = options.batch_runner;
-  objective.jobs = options.jobs;
+  const std::unique_ptr<EvaluationCache> cache = open_cache(study, options, &r.cache_path);
+  Objective objective(study, *cache, forward);
+  apply_options(objective, options);
   const std::vector<std::vector<double>> points = design_values(study, design);
   objective.set_planned(static_cast<long>(points.size()));
   r.runs = objective.evaluate_batch(points, options.jobs);

@@ -116,6 +116,22 @@ void write_report_md(const fs::path& path, const ScanArgs& a, const inverse::Stu
 
 int run_profile(const ScanArgs& args, const inverse::Study& study, const inverse::InversionOptions& options);
 
+// Runs `scan`; 0, or the exit code of the set-up error it threw (printed): a study or cache
+// the scan refuses (2), a cache it cannot write (3).
+template <class Scan>
+int guarded(Scan&& scan) {
+  try {
+    scan();
+    return 0;
+  } catch (const inverse::InversionError& e) {
+    std::cerr << e.what() << "\n";
+    return kExitBadInput;
+  } catch (const inverse::CacheError& e) {
+    std::cerr << e.what() << "\n";
+    return kExitRunFailed;
+  }
+}
+
 }  // namespace
 
 int run_scan(const ScanArgs& args) {
@@ -223,15 +239,8 @@ int run_scan(const ScanArgs& args) {
   if (args.design == "profile") return run_profile(args, study, options);
 
   inverse::DesignResult result;
-  try {
-    result = inverse::run_design(study, options, design_options(args));
-  } catch (const inverse::InversionError& e) {
-    std::cerr << e.what() << "\n";
-    return kExitBadInput;
-  } catch (const inverse::CacheError& e) {
-    std::cerr << e.what() << "\n";
-    return kExitRunFailed;
-  }
+  if (const int failed = guarded([&] { result = inverse::run_design(study, options, design_options(args)); }))
+    return failed;
   std::cerr << "\n";
   try {
     write_runs_csv(fs::path(args.out) / "runs.csv", study, result);
@@ -253,15 +262,8 @@ namespace {
 // The one-parameter profile: scan.csv and the table on stdout, as before the designs.
 int run_profile(const ScanArgs& args, const inverse::Study& study, const inverse::InversionOptions& options) {
   inverse::ScanResult scan;
-  try {
-    scan = inverse::run_scan(study, options, args.parameter, args.points);
-  } catch (const inverse::InversionError& e) {
-    std::cerr << e.what() << "\n";
-    return kExitBadInput;
-  } catch (const inverse::CacheError& e) {
-    std::cerr << e.what() << "\n";
-    return kExitRunFailed;
-  }
+  if (const int failed = guarded([&] { scan = inverse::run_scan(study, options, args.parameter, args.points); }))
+    return failed;
   // Table to stdout and DIR/scan.csv: the value, chi2, then each observation's simulated value.
   std::string header = args.parameter + ",chi2";
   for (const inverse::Observation& o : study.observations) header += "," + o.point + ":" + o.quantity;
