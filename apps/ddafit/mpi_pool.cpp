@@ -129,7 +129,13 @@ inverse::Objective::BatchRunner mpi_batch_runner(const MpiWorld& world) {
       // The first 20 characters are the point's index; the rest is the encoded run.
       const size_t index = std::stoul(text.substr(0, 20));
       double seconds = 0.0;
-      SimulationResult run = decode_run(text.substr(20), &seconds);
+      SimulationResult run;
+      try {
+        run = decode_run(text.substr(20), &seconds);
+      } catch (const std::exception& e) {  // a garbled reply costs that run, not the job
+        run = failed(std::string("worker rank ") + std::to_string(status.MPI_SOURCE) + " sent no readable result (" +
+                     e.what() + ")");
+      }
       if (next < points.size()) send(status.MPI_SOURCE);
       done(index, std::move(run), seconds);
     }

@@ -1,5 +1,6 @@
 #include "apps/ddafit/run_codec.hpp"
 
+#include <cmath>
 #include <nlohmann/json.hpp>
 
 namespace ddafit::app {
@@ -22,11 +23,13 @@ SimulationResult decode_run(const std::string& text, double* seconds) {
   const nlohmann::json j = nlohmann::json::parse(text);
   r.summary.status = static_cast<RunStatus>(j["status"].get<int>());
   r.summary.message = j["message"].get<std::string>();
-  r.summary.run.simulated_time = j["simulated_time"].get<double>();
-  *seconds = j["seconds"].get<double>();
+  r.summary.run.simulated_time = j["simulated_time"].is_number() ? j["simulated_time"].get<double>() : 0.0;
+  *seconds = j["seconds"].is_number() ? j["seconds"].get<double>() : 0.0;
+  // JSON has no NaN: a non-finite value was written as null and reads back as NaN.
+  const auto number = [](const nlohmann::json& v) { return v.is_number() ? v.get<double>() : NAN; };
   for (const auto& p : j["points"])
-    r.summary.points.push_back({p[0].get<std::string>(), p[1].get<double>(), p[2].get<double>(), p[3].get<double>(),
-                                p[4].get<double>(), p[5].get<double>(), p[6].get<bool>()});
+    r.summary.points.push_back({p[0].get<std::string>(), number(p[1]), number(p[2]), number(p[3]), number(p[4]),
+                                number(p[5]), p[6].get<bool>()});
   return r;
 }
 
