@@ -46,13 +46,22 @@ std::vector<Evaluation> Objective::evaluate_batch(const std::vector<std::vector<
     };
     std::vector<std::thread> workers;
     for (int w = 0; w < std::min<int>(jobs, static_cast<int>(todo.size())); ++w) workers.emplace_back(work);
-    for (size_t received = 0; received < todo.size(); ++received) {
-      std::unique_lock<std::mutex> lock(mutex);
-      ready.wait(lock, [&] { return !queue.empty(); });
-      Finished f = std::move(queue.front());
-      queue.pop_front();
-      lock.unlock();
-      done(f.index, std::move(f.run), f.seconds);
+    // Recording may throw (a cache that cannot be written): the workers then take no new
+    // point, finish the one they hold and are joined before the error goes on; a running
+    // std::thread would otherwise end the process.
+    try {
+      for (size_t received = 0; received < todo.size(); ++received) {
+        std::unique_lock<std::mutex> lock(mutex);
+        ready.wait(lock, [&] { return !queue.empty(); });
+        Finished f = std::move(queue.front());
+        queue.pop_front();
+        lock.unlock();
+        done(f.index, std::move(f.run), f.seconds);
+      }
+    } catch (...) {
+      next = todo.size();
+      for (std::thread& t : workers) t.join();
+      throw;
     }
     for (std::thread& t : workers) t.join();
   };
