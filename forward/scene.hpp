@@ -82,6 +82,10 @@ struct MeshSettings {
   // crossing a third a few centimetres apart leave such edges; a vertex-edge contact on
   // one is ill-defined once a step moves a block further than the edge is long.
   double min_edge_ratio = 0.05;
+  // The mesher's work bound: a region whose arrangement (outline and joint traces across its
+  // bounding box) would have more edges than this is refused before it is cut. 2e6 edges
+  // take about 15 s on one core; Vajont section X (6481 blocks) has 55 000.
+  double max_arrangement_edges = 2.0e6;
 };
 
 struct Scene {

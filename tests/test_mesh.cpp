@@ -124,5 +124,67 @@ TEST(Mesh, TooFineASpacingIsRefused) {
   EXPECT_NE(problem.find("blocks"), std::string::npos) << problem;
 }
 
+TEST(Mesh, ARegionMuchSmallerThanItsBoxIsRefusedByTheWorkBound) {
+  // A 10 m wide needle along the diagonal of a 100 km box: 5e5 m2, so only 8e4 blocks of
+  // 5 m (under the block-count guard), but the traces span the box and would cross 4e8
+  // times. Before the work bound, CGAL sweeps for hours; now the refusal names the key.
+  RegionInput region;
+  region.name = "needle";
+  region.material = 0;
+  region.polygon = {{0, 0}, {1e5, 1e5}, {99990, 1e5}};
+  region.joint_sets = {JointSet{90.0, {}, 5.0}, JointSet{0.0, {}, 5.0}};
+  MeshStats stats;
+  std::string problem;
+  EXPECT_TRUE(cut_region(region, MeshSettings{5.0}, stats, problem).empty());
+  EXPECT_NE(problem.find("mesh.max_arrangement_edges"), std::string::npos) << problem;
+  EXPECT_NE(problem.find("bounding box"), std::string::npos) << problem;
+}
+
+TEST(Mesh, TheWorkBoundEstimateIsAnUpperBoundCloseToTheTruth) {
+  // Below the true edge count, the estimate would let larger inputs through than the
+  // bound says; far above it, the bound would refuse legal regions. Checked on Vajont
+  // sections I and X (straight and parallel_to sets, a real surface) and on random
+  // regions with random joint sets. Bounds: at least the truth, at most 3 x (the
+  // straight-set estimate counts a crossing for every line a piece could reach).
+  const std::string file = std::string(DDAFIT_CASES_DIR) + "/vajont/vajont.yaml";
+  for (const char* size : {"34.3", "5.7"}) {
+    const Scene s = io::read_scene(file, {{"mesh.block_size", size}});
+    MeshStats stats;
+    std::string problem;
+    cut_region(s.regions[0], s.mesh, stats, problem);
+    EXPECT_GE(stats.estimated_edges, stats.arrangement_edges) << size;
+    EXPECT_LE(stats.estimated_edges, 3.0 * stats.arrangement_edges) << size;
+  }
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> dip(0.0, 180.0), spacing(4.0, 15.0);
+  for (int trial = 0; trial < 20; ++trial) {
+    RegionInput region;
+    region.name = "r";
+    region.material = 0;
+    region.polygon = random_region(rng);
+    region.joint_sets = {JointSet{dip(rng), {}, spacing(rng)}, JointSet{dip(rng), {}, spacing(rng)}};
+    MeshStats stats;
+    std::string problem;
+    cut_region(region, MeshSettings{10.0}, stats, problem);
+    EXPECT_GE(stats.estimated_edges, stats.arrangement_edges) << trial;
+    EXPECT_LE(stats.estimated_edges, 3.0 * stats.arrangement_edges) << trial;
+  }
+}
+
+TEST(Mesh, OffsetJointsAtASpikeStayNearIt) {
+  // A spike that turns back by 179 deg: its offset copies joined at the mitre would reach
+  // 115 x the offset above the tip (and cross the whole region from there). With the mitre
+  // limit every corner of a copy stays within 4 x its offset of the polyline.
+  JointSet set;
+  set.parallel_to = {{0, 0}, {10, 1000}, {20, 0}};
+  set.spacing = 5.0;
+  const Vec2 lo(-10, -10), hi(30, 1010);
+  const double reach = (hi - lo).norm();
+  double highest = -1e300;
+  for (const auto& [a, b] : joint_traces(set, 5.0, lo, hi)) highest = std::max({highest, a.y(), b.y()});
+  EXPECT_LE(highest, 1000.0 + 4.0 * (reach + 5.0));
+  EXPECT_GT(highest, 1000.0);  // the copies do pass over the tip
+}
+
 }  // namespace
 }  // namespace ddafit

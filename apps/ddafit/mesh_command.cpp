@@ -47,7 +47,9 @@ int run_mesh(const MeshArgs& args) {
     j["regions"][m.region] = {{"blocks", s.block_count},          {"mean_block_size", s.mean_block_size},
                               {"smallest_area", s.smallest_area}, {"smallest_angle", s.smallest_angle},
                               {"merged_slivers", s.merged_slivers}, {"remaining_slivers", s.remaining_slivers},
-                              {"area_error", s.area_error}};
+                              {"area_error", s.area_error},
+                              {"arrangement_edges", s.arrangement_edges},
+                              {"estimated_arrangement_edges", s.estimated_edges}};
     std::cout << fmt::format("{:<12} {:>7} {:>8.2f} m {:>10.2f} m2 {:>9.1f} deg {:>8} {:>11.1e}\n", m.region,
                              s.block_count, s.mean_block_size, s.smallest_area, s.smallest_angle, s.merged_slivers,
                              s.area_error);

@@ -76,7 +76,7 @@ std::vector<Vec2> read_polyline_csv(const YamlChecks& checks, const std::string&
 void read_regions(const YamlChecks& c, const YAML::Node& mesh, const YAML::Node& regions,
                   const std::string& base_dir, Scene& s) {
   if (mesh) {
-    c.check_keys(mesh, "mesh", {"block_size", "min_area_ratio", "min_angle", "min_edge_ratio"});
+    c.check_keys(mesh, "mesh", {"block_size", "min_area_ratio", "min_angle", "min_edge_ratio", "max_arrangement_edges"});
     if (const YAML::Node n = mesh["block_size"]) s.mesh.block_size = c.length(n, "mesh.block_size");
     c.opt_number(mesh, "mesh", "min_area_ratio", s.mesh.min_area_ratio);
     c.opt_number(mesh, "mesh", "min_angle", s.mesh.min_angle);
@@ -84,6 +84,9 @@ void read_regions(const YamlChecks& c, const YAML::Node& mesh, const YAML::Node&
     if (!(s.mesh.min_area_ratio >= 0.0 && s.mesh.min_area_ratio < 1.0)) c.fail("mesh.min_area_ratio", "must be in [0, 1)");
     if (!(s.mesh.min_angle >= 0.0 && s.mesh.min_angle < 60.0)) c.fail("mesh.min_angle", "must be in [0, 60) degrees");
     if (!(s.mesh.min_edge_ratio >= 0.0 && s.mesh.min_edge_ratio < 0.5)) c.fail("mesh.min_edge_ratio", "must be in [0, 0.5)");
+    c.opt_number(mesh, "mesh", "max_arrangement_edges", s.mesh.max_arrangement_edges);
+    if (!(s.mesh.max_arrangement_edges >= 1e3 && s.mesh.max_arrangement_edges <= 1e8))
+      c.fail("mesh.max_arrangement_edges", "must be in [1e3, 1e8] (1e8 edges is about ten minutes of cutting)");
   }
   if (!regions) return;
   c.list(regions, "regions");

@@ -12,8 +12,10 @@
 #include <limits>
 #include <cmath>
 #include <optional>
+#include <unordered_set>
 
 #include "forward/geometry.hpp"
+#include "forward/mesh/arrangement_size.hpp"
 #include "forward/mesh/region.hpp"
 
 namespace ddafit {
@@ -189,19 +191,32 @@ double shortest_inside_edge(Arrangement::Face_const_handle f) {
 
 // A sliver that shared two edges with its neighbour leaves, once merged across one,
 // the other edge with the same face on both sides: a spike into the block. Remove such
-// edges (and the vertices they leave alone) until none is left.
+// edges (and the vertices they leave alone), then the vertices left joining two collinear
+// edges, until none is left. Each pass walks the edges once: restarting from the first
+// edge after every removal made this quadratic (seconds for a surface with a tall spike).
 void remove_dangling_edges(Arrangement& arr) {
   for (bool again = true; again;) {
     again = false;
-    for (auto e = arr.edges_begin(); e != arr.edges_end(); ++e) {
-      if (e->face() != e->twin()->face() || e->face()->data() != 1) continue;
-      auto source = e->source(), target = e->target();
-      const bool source_alone = source->degree() == 1, target_alone = target->degree() == 1;
-      arr.remove_edge(e, source_alone, target_alone);
-      if (!source_alone) merge_if_collinear(arr, source);
-      if (!target_alone) merge_if_collinear(arr, target);
-      again = true;
-      break;  // iterators are invalid after a removal
+    // Ends are kept during the pass (no handle goes stale) and tidied after it.
+    std::vector<Arrangement::Vertex_handle> ends;
+    for (auto e = arr.edges_begin(); e != arr.edges_end();) {
+      auto next = std::next(e);
+      if (e->face() == e->twin()->face() && e->face()->data() == 1) {
+        ends.push_back(e->source());
+        ends.push_back(e->target());
+        arr.remove_edge(e, false, false);
+        again = true;
+      }
+      e = next;
+    }
+    const auto address = [](Arrangement::Vertex_handle v) { return &*v; };
+    std::sort(ends.begin(), ends.end(), [&](auto a, auto b) { return address(a) < address(b); });
+    ends.erase(std::unique(ends.begin(), ends.end()), ends.end());
+    for (auto v : ends) {
+      if (v->is_isolated())
+        arr.remove_isolated_vertex(v);
+      else
+        merge_if_collinear(arr, v);
     }
   }
 }
@@ -245,14 +260,45 @@ std::vector<std::vector<Vec2>> cut_region(const RegionInput& region, const MeshS
               std::to_string(static_cast<long>(kMaxBlocksPerRegion)) + "); raise the spacings or block_size";
     return {};
   }
-  for (const JointSet& set : region.joint_sets)
+  // The work bound (arrangement_size.hpp): first the pieces the sets would lay, then the
+  // edges their crossings would make.
+  const auto refuse = [&](const char* what, double amount) {
+    char text[400];
+    std::snprintf(text, sizeof text,
+                  "cutting would %s %.2g (mesh.max_arrangement_edges = %.3g): joint traces span the region's "
+                  "bounding box, %.0f x %.0f m, which is large for the region's %.3g m2; look for a stray outline "
+                  "or surface point, or raise block_size or mesh.max_arrangement_edges",
+                  what, amount, settings.max_arrangement_edges, hi.x() - lo.x(), hi.y() - lo.y(), region_area);
+    problem = text;
+  };
+  double planned = static_cast<double>(outline.size());
+  for (const JointSet& set : region.joint_sets) planned += planned_trace_pieces(set, block_size, lo, hi);
+  if (planned > settings.max_arrangement_edges) {
+    refuse("lay joint-trace pieces, about", planned);
+    return {};
+  }
+  std::vector<TraceFamily> families(1);
+  for (size_t k = 0; k < outline.size(); ++k) families[0].pieces.emplace_back(outline[k], outline[(k + 1) % outline.size()]);
+  for (const JointSet& set : region.joint_sets) {
+    TraceFamily& family = families.emplace_back();
+    family.straight = set.parallel_to.size() < 2;
+    family.along = Vec2(std::cos(set.dip * M_PI / 180.0), -std::sin(set.dip * M_PI / 180.0));
+    family.spacing = set.spacing > 0.0 ? set.spacing : set.spacing_ratio * block_size;
     for (const auto& [a, b] : joint_traces(set, block_size, lo, hi))
-      if (auto piece = clip(a, b, lo, hi))
-        segments.emplace_back(Point(piece->first.x(), piece->first.y()),
-                              Point(piece->second.x(), piece->second.y()));
+      if (auto piece = clip(a, b, lo, hi)) family.pieces.push_back(*piece);
+  }
+  const double edges = estimated_arrangement_edges(families, settings.max_arrangement_edges);
+  stats.estimated_edges += edges;
+  if (edges >= settings.max_arrangement_edges) {
+    refuse("build an arrangement of edges, at least", edges);
+    return {};
+  }
+  for (size_t f = 1; f < families.size(); ++f)
+    for (const auto& [a, b] : families[f].pieces) segments.emplace_back(Point(a.x(), a.y()), Point(b.x(), b.y()));
 
   Arrangement arr;
   CGAL::insert(arr, segments.begin(), segments.end());
+  stats.arrangement_edges += static_cast<double>(arr.number_of_edges());
 
   for (auto f = arr.faces_begin(); f != arr.faces_end(); ++f) {
     f->set_data(0);
@@ -266,10 +312,12 @@ std::vector<std::vector<Vec2>> cut_region(const RegionInput& region, const MeshS
   const double min_edge = settings.min_edge_ratio * block_size;
   for (int round = 0; round < 50; ++round) {
     std::vector<Arrangement::Halfedge_handle> to_remove;
-    std::vector<Arrangement::Face_handle> touched;
+    // Faces merged this round (a face merges once per round; its shape has changed).
+    std::unordered_set<const void*> touched;
+    const auto is_touched = [&](Arrangement::Face_const_handle g) { return touched.count(&*g) > 0; };
     for (auto f = arr.faces_begin(); f != arr.faces_end(); ++f) {
       if (f->is_unbounded() || f->data() != 1) continue;
-      if (std::find(touched.begin(), touched.end(), f) != touched.end()) continue;
+      if (is_touched(f)) continue;
       const std::vector<Vec2> poly = face_polygon(f);
       const bool short_edged = shortest_inside_edge(f) < min_edge;
       if (!short_edged && signed_area(poly) >= min_area && smallest_angle(poly, outline) >= settings.min_angle)
@@ -307,7 +355,7 @@ std::vector<std::vector<Vec2>> cut_region(const RegionInput& region, const MeshS
           // A block that is only short-edged merges across its short edge, which removes it.
           if (short_edged && length >= min_edge) continue;
           if (!short_edged && !at_corner && tier == 0 && length < 0.25 * longest) continue;
-          if (std::find(touched.begin(), touched.end(), other) != touched.end()) continue;
+          if (is_touched(other)) continue;
           const double other_area = signed_area(face_polygon(other));
           const double cap = tier == 2 ? 1e300 : (tier == 0 ? 1.0 : 4.0) * kMaxMergedAreaRatio * block_size * block_size;
           if (own_area + other_area > cap) continue;
@@ -318,8 +366,8 @@ std::vector<std::vector<Vec2>> cut_region(const RegionInput& region, const MeshS
         } while (++he != start);
       }
       if (best_area == 1e300) continue;
-      touched.push_back(f);
-      touched.push_back(best->twin()->face());
+      touched.insert(&*f);
+      touched.insert(&*best->twin()->face());
       to_remove.push_back(best);
     }
     if (to_remove.empty()) break;

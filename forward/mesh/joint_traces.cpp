@@ -13,9 +13,16 @@ Vec2 line_intersection(const Vec2& p, const Vec2& u, const Vec2& q, const Vec2& 
   return p + s * u;
 }
 
+// Offset joins reach at most this multiple of the offset distance from the corner (the
+// "miter limit" of drawing programs). At a corner that turns by alpha the mitre lies
+// distance / cos(alpha / 2) away: a turn of 150 deg gives 3.9 x, a spike that turns
+// nearly back on itself gives thousands, and every copy of it then crosses the region.
+constexpr double kMiterLimit = 4.0;
+
 // The polyline offset by `distance` along its left normal (upwards for a polyline
 // ordered by increasing x): each segment is shifted and neighbours are joined at the
-// intersection of their shifted lines; the end segments run on to the box.
+// intersection of their shifted lines, or cut off square (a bevel) where that would pass
+// the mitre limit; the end segments run on to the box.
 std::vector<Vec2> offset_polyline(const std::vector<Vec2>& line, double distance, double reach) {
   std::vector<Vec2> points, directions;
   for (size_t k = 0; k + 1 < line.size(); ++k) {
@@ -28,7 +35,14 @@ std::vector<Vec2> offset_polyline(const std::vector<Vec2>& line, double distance
   for (size_t k = 1; k < points.size(); ++k) {
     if (std::abs(directions[k - 1].x() * directions[k].y() - directions[k - 1].y() * directions[k].x()) < 1e-12)
       continue;  // collinear neighbours: no corner
-    out.push_back(line_intersection(points[k - 1], directions[k - 1], points[k], directions[k]));
+    const Vec2 join = line_intersection(points[k - 1], directions[k - 1], points[k], directions[k]);
+    if ((join - line[k]).norm() <= kMiterLimit * std::abs(distance)) {
+      out.push_back(join);
+    } else {
+      const Vec2& u = directions[k - 1];
+      out.push_back(line[k] + distance * Vec2(-u.y(), u.x()));  // end of the shifted segment before
+      out.push_back(points[k]);                                  // start of the shifted segment after
+    }
   }
   const Vec2 last_start = points.back();
   out.push_back(last_start + reach * directions.back());

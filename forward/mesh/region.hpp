@@ -17,6 +17,10 @@ struct MeshStats {
   int merged_slivers = 0;
   int remaining_slivers = 0;     // slivers no neighbour could take (reported, not hidden)
   double area_error = 0.0;       // |sum of block areas - region area| / region area
+  // The mesher's work (summed over a region's cuts): edges of the arrangement CGAL built,
+  // and the estimate mesh.max_arrangement_edges was checked against before building it.
+  double arrangement_edges = 0.0;
+  double estimated_edges = 0.0;
 };
 
 struct RegionMesh {
