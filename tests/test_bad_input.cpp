@@ -164,6 +164,24 @@ TEST(BadInput, PlotRefusesAnotherScenesHistory) {
   expect_refused(ddafit("plot " + kCases + "/inverse/two_sliders.yaml " + out.string(), "plot_other"), "history.csv");
 }
 
+TEST(BadInput, PlotDrawsAnEstimateAndRefusesAnEmptyRange) {
+  // The lateral speed-distance chart (seed Fig. 14) with a field estimate as bands; a
+  // range given high-to-low would draw an empty band, so it is refused.
+  const fs::path out = fs::path(DDAFIT_TEST_TMP) / "plot_bands" / "run";
+  ASSERT_EQ(ddafit("simulate " + kIncline + " --set time.duration=0.05 --out " + out.string() + " --quiet", "plot_bands_run").code, 0);
+  expect_refused(ddafit("plot " + kIncline + " " + out.string() + " --runout-range 500 400", "plot_bands_reversed"),
+                 "--runout-range");
+  const CommandResult r = ddafit("plot " + kIncline + " " + out.string() +
+                                     " --runout-range 400 500 --speed-range 20 25 --estimate 'Hendron & Patton'",
+                                 "plot_bands");
+  if (r.code == 3) GTEST_SKIP() << "gnuplot missing: " << r.err;
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(slurp(out / "velocity_distance_lateral.png").substr(1, 3), "PNG");
+  const std::string script = slurp(out / "history.gp");
+  EXPECT_NE(script.find("Hendron & Patton: runout 400-500 m"), std::string::npos) << "the band is in the legend";
+  EXPECT_NE(script.find("first 20 to graph 1, first 25"), std::string::npos) << "the speed band spans 20-25 m/s";
+}
+
 TEST(BadInput, AMistypedCommandGetsASuggestion) {
   const CommandResult r = ddafit("simulat", "mistyped");
   expect_refused(r, "did you mean 'simulate'");

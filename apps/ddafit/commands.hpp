@@ -5,6 +5,7 @@
 #include <utility>
 #include <vector>
 
+#include "apps/ddafit/plots.hpp"
 #include "forward/analysis/stable_friction.hpp"
 #include "forward/scene.hpp"
 
@@ -45,6 +46,7 @@ struct PlotArgs {
   std::string scene;
   std::string dir;
   std::vector<std::string> sets;
+  ObservedRanges observed;  // an estimate drawn on the lateral speed-distance chart
 };
 int run_plot(const PlotArgs& args);
 

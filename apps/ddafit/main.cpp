@@ -84,6 +84,13 @@ int main(int argc, char** argv) {
   plot->add_option("scene", pl.scene, "the scene the run used (for the point names)")->required();
   plot->add_option("dir", pl.dir, "the run's output folder")->required();
   plot->add_option("--set", pl.sets, "the overrides the run used, KEY=VALUE (repeatable)");
+  plot->add_option("--runout-range", pl.observed.runout, "m, LOW HIGH: an estimated lateral runout, drawn as a band")
+      ->expected(2)
+      ->check(within(0.0, 1e6));
+  plot->add_option("--speed-range", pl.observed.peak_speed, "m/s, LOW HIGH: an estimated peak lateral speed, drawn as a band")
+      ->expected(2)
+      ->check(within(0.0, 1e4));
+  plot->add_option("--estimate", pl.observed.label, "whose estimate the bands are (legend text)");
 
   StableArgs st;
   CLI::App* stable = app.add_subcommand("stable", "bisect an interface's friction angle for the stable state");

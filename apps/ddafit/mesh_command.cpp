@@ -93,12 +93,18 @@ int run_plot(const PlotArgs& args) {
               << list(scene_points) << "): give the scene and --set values the run used\n";
     return kExitBadInput;
   }
+  for (const auto* range : {&args.observed.runout, &args.observed.peak_speed})
+    if (range->size() == 2 && !((*range)[0] < (*range)[1])) {
+      std::cerr << "--runout-range/--speed-range: give LOW HIGH with LOW < HIGH\n";
+      return kExitBadInput;
+    }
   std::string reason;
-  if (!plot_history(args.dir, scene, args.scene, reason)) {
+  if (!plot_history(args.dir, scene, args.scene, reason, args.observed)) {
     std::cerr << "charts not drawn: " << reason << "\n";
     return kExitRunFailed;
   }
-  std::cout << "wrote distance_time.png, runout_time.png, velocity_time.png, velocity_distance.png in " << args.dir
+  std::cout << "wrote distance_time.png, runout_time.png, velocity_time.png, velocity_distance.png, "
+               "velocity_distance_lateral.png in " << args.dir
             << "\n";
   return kExitSuccess;
 }

@@ -84,7 +84,8 @@ bool plot_configuration(const std::string& dir, const Scene& scene, const std::v
   return run_gnuplot(script, reason);
 }
 
-bool plot_history(const std::string& dir, const Scene& scene, const std::string& title, std::string& reason) {
+bool plot_history(const std::string& dir, const Scene& scene, const std::string& title, std::string& reason,
+                  const ObservedRanges& observed) {
   const std::filesystem::path d(dir);
   const std::string csv = (d / "history.csv").string();
   const std::string script = (d / "history.gp").string();
@@ -100,8 +101,9 @@ bool plot_history(const std::string& dir, const Scene& scene, const std::string&
     const auto curves = [&](const std::string& x, const std::string& y) {
       std::string plot = "plot ";
       for (size_t k = 0; k < n; ++k)
-        plot += fmt::format("{}'{}' skip 1 every {}::{} using ({}):({}) with lines lw 2 title '{}'", k ? ", " : "",
-                            csv, n, k, x, y, scene.measure[k].name);
+        // gnuplot cycles 8 colours: the 9th point on is dashed, so no two curves look alike.
+        plot += fmt::format("{}'{}' skip 1 every {}::{} using ({}):({}) with lines lw 2 dt {} title '{}' noenhanced",
+                            k ? ", " : "", csv, n, k, x, y, k / 8 + 1, gnuplot_text(scene.measure[k].name));
       return plot + "\n";
     };
     gp.print("set output '{}'\nset title '{}: distance against time'\nset xlabel 'time (s)'\n"
@@ -116,6 +118,33 @@ bool plot_history(const std::string& dir, const Scene& scene, const std::string&
     gp.print("set output '{}'\nset title '{}: speed against distance'\nset xlabel 'distance |u| (m)'\n"
              "set ylabel 'speed |v| (m/s)'\n", (d / "velocity_distance.png").string(), name);
     gp.print("{}", curves("sqrt($5**2+$6**2)", "sqrt($7**2+$8**2)"));
+    // Seed Fig. 14: lateral speed against lateral runout, with a field estimate as bands
+    // (gnuplot objects behind the curves; a dummy curve per band puts it in the legend).
+    gp.print("set output '{}'\nset title '{}: lateral speed against lateral runout'\n"
+             "set xlabel 'lateral runout |u_x| (m)'\nset ylabel 'lateral speed |v_x| (m/s)'\n",
+             (d / "velocity_distance_lateral.png").string(), name);
+    gp.print("set key outside below maxrows 4\n");
+    std::string legend;
+    const std::string who = gnuplot_text(observed.label.empty() ? std::string("estimate") : observed.label);
+    if (observed.runout.size() == 2) {
+      // "[0 : X < *]": autoscaled, but far enough to show the whole band.
+      gp.print("set xrange [0 : {:g} < *]\n", 1.05 * observed.runout[1]);
+      gp.print("set object 1 rect from first {}, graph 0 to first {}, graph 1 behind fc rgb '#f4d6a0' fs solid 0.6 "
+               "noborder\n", observed.runout[0], observed.runout[1]);
+      legend += fmt::format(", NaN with boxes fs solid 0.6 fc rgb '#f4d6a0' title '{}: runout {:g}-{:g} m' noenhanced",
+                            who, observed.runout[0], observed.runout[1]);
+    }
+    if (observed.peak_speed.size() == 2) {
+      gp.print("set yrange [0 : {:g} < *]\n", 1.05 * observed.peak_speed[1]);
+      gp.print("set object 2 rect from graph 0, first {} to graph 1, first {} behind fc rgb '#b8d8ec' fs solid 0.6 "
+               "noborder\n", observed.peak_speed[0], observed.peak_speed[1]);
+      legend += fmt::format(
+          ", NaN with boxes fs solid 0.6 fc rgb '#b8d8ec' title '{}: peak speed {:g}-{:g} m/s' noenhanced", who,
+          observed.peak_speed[0], observed.peak_speed[1]);
+    }
+    std::string lateral = curves("abs($5)", "abs($7)");
+    lateral.insert(lateral.size() - 1, legend);
+    gp.print("{}", lateral);
   }
   return run_gnuplot(script, reason);
 }
