@@ -140,6 +140,26 @@ TEST(Mesh, ARegionMuchSmallerThanItsBoxIsRefusedByTheWorkBound) {
   EXPECT_NE(problem.find("bounding box"), std::string::npos) << problem;
 }
 
+TEST(Mesh, ThinRegionAlongAParallelToLineIsRefusedWithoutCountingForEver) {
+  // A strip 1 m wide along the diagonal of a 100 km box, with joints parallel to its base
+  // every metre: 7e4 copies of a straight line cross the box and overlap each other in x.
+  // They never cross, but testing them pair by pair is about 1e9 tests, beyond the 2e8 the
+  // default bound allows for counting, so the region is refused with a message that says so.
+  RegionInput region;
+  region.name = "strip";
+  region.material = 0;
+  region.polygon = {{0, 0}, {1, 0}, {1e5 + 1, 1e5}, {1e5, 1e5}};
+  JointSet along_base;
+  along_base.parallel_to = {{0, 0}, {1e5, 1e5}};
+  along_base.spacing = 1.0;
+  region.joint_sets = {along_base};
+  MeshStats stats;
+  std::string problem;
+  EXPECT_TRUE(cut_region(region, MeshSettings{1.0}, stats, problem).empty());
+  EXPECT_NE(problem.find("more pairs than can be counted"), std::string::npos) << problem;
+  EXPECT_NE(problem.find("mesh.max_arrangement_edges"), std::string::npos) << problem;
+}
+
 TEST(Mesh, TheWorkBoundEstimateIsAnUpperBoundCloseToTheTruth) {
   // Below the true edge count, the estimate would let larger inputs through than the
   // bound says; far above it, the bound would refuse legal regions. Checked on Vajont

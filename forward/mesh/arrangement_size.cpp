@@ -6,11 +6,17 @@
 // running for minutes (or, with a needle-shaped region, for ever).
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "forward/mesh/arrangement_size.hpp"
 
 namespace ddafit {
 namespace {
+
+// Pair tests allowed per edge of the bound while counting curved crossings: a test costs
+// about a hundredth of what CGAL spends per edge, so the count stays a small part of the
+// cut it guards.
+constexpr double kTestsPerEdge = 100.0;
 
 double cross2(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
 
@@ -24,15 +30,20 @@ bool properly_cross(const Segment2& s, const Segment2& t) {
 }
 
 // Crossings among curved pieces, counted by a sweep over x (pairs whose x-ranges overlap
-// are tested); stops counting once `enough` is reached.
-double count_curved_crossings(std::vector<Segment2> pieces, double enough) {
+// are tested); stops counting once `enough` is reached. Returns infinity when more than
+// `max_tests` pairs overlap: parallel copies that span the box never cross, yet every pair
+// of them would be tested (a thin region along a straight parallel_to line, 1e5 copies,
+// is 5e9 tests), so the counting itself needs a bound.
+double count_curved_crossings(std::vector<Segment2> pieces, double enough, double max_tests) {
   for (Segment2& p : pieces)
     if (p.second.x() < p.first.x()) std::swap(p.first, p.second);
   std::sort(pieces.begin(), pieces.end(), [](const Segment2& a, const Segment2& b) { return a.first.x() < b.first.x(); });
-  double count = 0.0;
+  double count = 0.0, tests = 0.0;
   for (size_t i = 0; i < pieces.size() && count < enough; ++i)
-    for (size_t j = i + 1; j < pieces.size() && pieces[j].first.x() <= pieces[i].second.x(); ++j)
+    for (size_t j = i + 1; j < pieces.size() && pieces[j].first.x() <= pieces[i].second.x(); ++j) {
+      if (++tests > max_tests) return std::numeric_limits<double>::infinity();
       if (properly_cross(pieces[i], pieces[j]) && ++count >= enough) break;
+    }
   return count;
 }
 
@@ -68,7 +79,8 @@ double estimated_arrangement_edges(const std::vector<TraceFamily>& families, dou
       }
     }
   }
-  if (pieces + 2.0 * crossings < enough) crossings += count_curved_crossings(std::move(curved), enough);
+  if (pieces + 2.0 * crossings < enough)
+    crossings += count_curved_crossings(std::move(curved), enough, kTestsPerEdge * enough);
   return pieces + 2.0 * crossings;
 }
 

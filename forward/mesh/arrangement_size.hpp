@@ -25,7 +25,9 @@ double planned_trace_pieces(const JointSet& set, double block_size, const Vec2& 
 
 // Edges of the arrangement of all the families: pieces + 2 x crossings, with crossings
 // against straight sets bounded from the pieces' lengths and directions, and crossings
-// among curved pieces counted. Stops refining once the estimate reaches `enough`.
+// among curved pieces counted. Stops refining once the estimate reaches `enough`; returns
+// infinity when the curved pieces overlap in more than 100 x `enough` pairs (too many to
+// count, and a sign of a region far thinner than its box).
 double estimated_arrangement_edges(const std::vector<TraceFamily>& families, double enough);
 
 }  // namespace ddafit

@@ -135,6 +135,11 @@ std::vector<std::vector<Vec2>> cut_region(const RegionInput& region, const MeshS
   }
   const double edges = estimated_arrangement_edges(families, settings.max_arrangement_edges);
   stats.estimated_edges += edges;
+  if (std::isinf(edges)) {
+    refuse("overlap curved joint-trace pieces (parallel_to copies, outline) in more pairs than can be counted, over",
+           100.0 * settings.max_arrangement_edges);
+    return {};
+  }
   if (edges >= settings.max_arrangement_edges) {
     refuse("build an arrangement of edges, at least", edges);
     return {};
