@@ -27,6 +27,16 @@ std::vector<Vec2> random_region(std::mt19937& rng) {
   return poly;
 }
 
+// A region of rock (material 0) with the given outline and joint sets.
+RegionInput test_region(const std::string& name, std::vector<Vec2> polygon, std::vector<JointSet> joint_sets) {
+  RegionInput region;
+  region.name = name;
+  region.material = 0;
+  region.polygon = std::move(polygon);
+  region.joint_sets = std::move(joint_sets);
+  return region;
+}
+
 // Whether p lies on the polygon's boundary (to round-off of the region's size).
 bool on_outline(const Vec2& p, const std::vector<Vec2>& polygon) {
   for (size_t k = 0; k < polygon.size(); ++k) {
@@ -113,11 +123,8 @@ TEST(Mesh, VajontSectionsMatchTheSeedBlockCounts) {
 }
 
 TEST(Mesh, TooFineASpacingIsRefused) {
-  RegionInput region;
-  region.name = "r";
-  region.material = 0;
-  region.polygon = {{0, 0}, {1000, 0}, {1000, 1000}, {0, 1000}};
-  region.joint_sets = {JointSet{90.0, {}, 0.5}, JointSet{0.0, {}, 0.5}};  // 4 million blocks
+  const RegionInput region = test_region("r", {{0, 0}, {1000, 0}, {1000, 1000}, {0, 1000}},
+                                         {JointSet{90.0, {}, 0.5}, JointSet{0.0, {}, 0.5}});  // 4 million blocks
   MeshStats stats;
   std::string problem;
   EXPECT_TRUE(cut_region(region, MeshSettings{1.0}, stats, problem).empty());
@@ -128,11 +135,8 @@ TEST(Mesh, ARegionMuchSmallerThanItsBoxIsRefusedByTheWorkBound) {
   // A 10 m wide needle along the diagonal of a 100 km box: 5e5 m2, so only 8e4 blocks of
   // 5 m (under the block-count guard), but the traces span the box and would cross 4e8
   // times. Before the work bound, CGAL sweeps for hours; now the refusal names the key.
-  RegionInput region;
-  region.name = "needle";
-  region.material = 0;
-  region.polygon = {{0, 0}, {1e5, 1e5}, {99990, 1e5}};
-  region.joint_sets = {JointSet{90.0, {}, 5.0}, JointSet{0.0, {}, 5.0}};
+  const RegionInput region = test_region("needle", {{0, 0}, {1e5, 1e5}, {99990, 1e5}},
+                                         {JointSet{90.0, {}, 5.0}, JointSet{0.0, {}, 5.0}});
   MeshStats stats;
   std::string problem;
   EXPECT_TRUE(cut_region(region, MeshSettings{5.0}, stats, problem).empty());
@@ -145,14 +149,10 @@ TEST(Mesh, ThinRegionAlongAParallelToLineIsRefusedWithoutCountingForEver) {
   // every metre: 7e4 copies of a straight line cross the box and overlap each other in x.
   // They never cross, but testing them pair by pair is about 1e9 tests, beyond the 2e8 the
   // default bound allows for counting, so the region is refused with a message that says so.
-  RegionInput region;
-  region.name = "strip";
-  region.material = 0;
-  region.polygon = {{0, 0}, {1, 0}, {1e5 + 1, 1e5}, {1e5, 1e5}};
   JointSet along_base;
   along_base.parallel_to = {{0, 0}, {1e5, 1e5}};
   along_base.spacing = 1.0;
-  region.joint_sets = {along_base};
+  const RegionInput region = test_region("strip", {{0, 0}, {1, 0}, {1e5 + 1, 1e5}, {1e5, 1e5}}, {along_base});
   MeshStats stats;
   std::string problem;
   EXPECT_TRUE(cut_region(region, MeshSettings{1.0}, stats, problem).empty());
@@ -178,11 +178,8 @@ TEST(Mesh, TheWorkBoundEstimateIsAnUpperBoundCloseToTheTruth) {
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> dip(0.0, 180.0), spacing(4.0, 15.0);
   for (int trial = 0; trial < 20; ++trial) {
-    RegionInput region;
-    region.name = "r";
-    region.material = 0;
-    region.polygon = random_region(rng);
-    region.joint_sets = {JointSet{dip(rng), {}, spacing(rng)}, JointSet{dip(rng), {}, spacing(rng)}};
+    const RegionInput region = test_region("r", random_region(rng), {JointSet{dip(rng), {}, spacing(rng)},
+                                                                      JointSet{dip(rng), {}, spacing(rng)}});
     MeshStats stats;
     std::string problem;
     cut_region(region, MeshSettings{10.0}, stats, problem);

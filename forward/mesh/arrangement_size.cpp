@@ -9,14 +9,10 @@
 #include <limits>
 
 #include "forward/mesh/arrangement_size.hpp"
+#include "forward/mesh/region.hpp"
 
 namespace ddafit {
 namespace {
-
-// Pair tests allowed per edge of the bound while counting curved crossings: a test costs
-// about a hundredth of what CGAL spends per edge, so the count stays a small part of the
-// cut it guards.
-constexpr double kTestsPerEdge = 100.0;
 
 double cross2(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
 
@@ -50,7 +46,7 @@ double count_curved_crossings(std::vector<Segment2> pieces, double enough, doubl
 }  // namespace
 
 double planned_trace_pieces(const JointSet& set, double block_size, const Vec2& lo, const Vec2& hi) {
-  const double spacing = set.spacing > 0.0 ? set.spacing : set.spacing_ratio * block_size;
+  const double spacing = joint_spacing(set, block_size);
   if (!(spacing > 0.0)) return 0.0;
   const double reach = (hi - lo).norm();
   const double lines = reach / spacing + 2.0;
@@ -80,7 +76,7 @@ double estimated_arrangement_edges(const std::vector<TraceFamily>& families, dou
     }
   }
   if (pieces + 2.0 * crossings < enough)
-    crossings += count_curved_crossings(std::move(curved), enough, kTestsPerEdge * enough);
+    crossings += count_curved_crossings(std::move(curved), enough, kCountTestsPerEdge * enough);
   return pieces + 2.0 * crossings;
 }
 

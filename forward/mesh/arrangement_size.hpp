@@ -10,6 +10,11 @@ namespace ddafit {
 
 using Segment2 = std::pair<Vec2, Vec2>;
 
+// Pair tests allowed per edge of the bound while counting curved crossings: a test costs
+// about a hundredth of what CGAL spends per edge, so the count stays a small part of the
+// cut it guards.
+constexpr double kCountTestsPerEdge = 100.0;
+
 // The pieces one source puts into the arrangement: the region outline, or one joint set's
 // traces clipped to the box. A straight set is parallel lines `spacing` apart along `along`.
 struct TraceFamily {
@@ -26,7 +31,7 @@ double planned_trace_pieces(const JointSet& set, double block_size, const Vec2& 
 // Edges of the arrangement of all the families: pieces + 2 x crossings, with crossings
 // against straight sets bounded from the pieces' lengths and directions, and crossings
 // among curved pieces counted. Stops refining once the estimate reaches `enough`; returns
-// infinity when the curved pieces overlap in more than 100 x `enough` pairs (too many to
+// infinity when the curved pieces overlap in more than kCountTestsPerEdge x `enough` pairs (too many to
 // count, and a sign of a region far thinner than its box).
 double estimated_arrangement_edges(const std::vector<TraceFamily>& families, double enough);
 

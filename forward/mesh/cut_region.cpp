@@ -92,7 +92,7 @@ std::vector<std::vector<Vec2>> cut_region(const RegionInput& region, const MeshS
   }
   double densest = 0.0;  // joints per metre, summed over sets, for the size guard
   for (const JointSet& set : region.joint_sets) {
-    const double spacing = set.spacing > 0.0 ? set.spacing : set.spacing_ratio * block_size;
+    const double spacing = joint_spacing(set, block_size);
     densest += 1.0 / spacing;
   }
   if (densest * densest * region_area > kMaxBlocksPerRegion) {
@@ -129,7 +129,7 @@ std::vector<std::vector<Vec2>> cut_region(const RegionInput& region, const MeshS
     TraceFamily& family = families.emplace_back();
     family.straight = set.parallel_to.size() < 2;
     family.along = Vec2(std::cos(set.dip * M_PI / 180.0), -std::sin(set.dip * M_PI / 180.0));
-    family.spacing = set.spacing > 0.0 ? set.spacing : set.spacing_ratio * block_size;
+    family.spacing = joint_spacing(set, block_size);
     for (const auto& [a, b] : joint_traces(set, block_size, lo, hi))
       if (auto piece = clip(a, b, lo, hi)) family.pieces.push_back(*piece);
   }
@@ -137,7 +137,7 @@ std::vector<std::vector<Vec2>> cut_region(const RegionInput& region, const MeshS
   stats.estimated_edges += edges;
   if (std::isinf(edges)) {
     refuse("overlap curved joint-trace pieces (parallel_to copies, outline) in more pairs than can be counted, over",
-           100.0 * settings.max_arrangement_edges);
+           kCountTestsPerEdge * settings.max_arrangement_edges);
     return {};
   }
   if (edges >= settings.max_arrangement_edges) {

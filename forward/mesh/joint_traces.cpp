@@ -54,7 +54,7 @@ std::vector<Vec2> offset_polyline(const std::vector<Vec2>& line, double distance
 std::vector<std::pair<Vec2, Vec2>> joint_traces(const JointSet& set, double block_size, const Vec2& lo,
                                                 const Vec2& hi) {
   std::vector<std::pair<Vec2, Vec2>> traces;
-  const double spacing = set.spacing > 0.0 ? set.spacing : set.spacing_ratio * block_size;
+  const double spacing = joint_spacing(set, block_size);
   const double reach = (hi - lo).norm();
   if (!(spacing > 0.0)) return traces;
   if (set.parallel_to.size() >= 2) {

@@ -33,6 +33,11 @@ struct RegionMesh {
 // region, or sets `problem` ("regions[K]: ...") and leaves the scene unchanged.
 std::vector<RegionMesh> generate_blocks(Scene& scene, std::string& problem);
 
+// A set's spacing in m: its own `spacing`, else spacing_ratio x the region's block size.
+inline double joint_spacing(const JointSet& set, double block_size) {
+  return set.spacing > 0.0 ? set.spacing : set.spacing_ratio * block_size;
+}
+
 // The joint traces of one set across a region's bounding box, as segments.
 std::vector<std::pair<Vec2, Vec2>> joint_traces(const JointSet& set, double block_size, const Vec2& lo,
                                                 const Vec2& hi);
