@@ -6,6 +6,14 @@
 
 namespace ddafit {
 
+void report_overlap(const BlockSystem& s, const WorstOverlap& worst, SolverReport& report) {
+  report.worst_penetration = worst.depth;
+  report.worst_penetration_ratio = worst.ratio;
+  report.worst_penetration_time = worst.time;
+  if (worst.block_a >= 0)
+    report.worst_penetration_at = "blocks '" + s.block_names[worst.block_a] + "' and '" + s.block_names[worst.block_b] + "'";
+}
+
 Vec2 point_velocity(const BlockSystem& s, const MaterialPoint& p) {
   const Block& b = s.blocks[p.block];
   if (b.unknown < 0) return Vec2::Zero();

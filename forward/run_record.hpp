@@ -4,12 +4,16 @@
 
 #include <chrono>
 
+#include "forward/contact/overlap.hpp"
 #include "forward/simulation.hpp"
 
 namespace ddafit {
 
 // Velocity of a measurement point: T(p) times its block's velocity.
 Vec2 point_velocity(const BlockSystem& system, const MaterialPoint& point);
+
+// The worst overlap of the run into the solver's report (summary.json).
+void report_overlap(const BlockSystem& system, const WorstOverlap& worst, SolverReport& report);
 
 class RunRecorder {
  public:

@@ -1,5 +1,5 @@
 // simulate(): check the scene, build the blocks, pick the solver and run it. The two
-// solvers share the scene, the block system, the contact law (forward/contact_law.hpp),
+// solvers share the scene, the block system, the contact stage and law (forward/contact/),
 // the energy audit and the recording of the run (forward/run_record.hpp).
 #include "forward/simulation.hpp"
 

@@ -46,17 +46,6 @@ Scene corner_scene(Integrator integrator, int degrees) {
 
 TEST_P(SubstepScenesCorner, EnergyBoundedNoPassThrough) {
   const auto [integrator, degrees] = GetParam();
-  // The implicit solver genuinely fails three of these scenes, so they are asserted on
-  // the substep solver only (reported to the lead; measured at time.step 1e-3, 1.5 s):
-  //  - 0 and 90 degrees: as the square slides off the corner (t = 0.25-0.45 s) the
-  //    contact creates energy: the kinetic energy exceeds the budget by 84 J/m, 1.7 % of
-  //    the 4836 J/m gravity has supplied by then (313 x the allowed excess; within the
-  //    solver's own 5 % audit, so the run completes);
-  //  - 45 degrees: the run fails at t = 0.723 s: the kinetic energy jumps from 2.6 kJ/m
-  //    to 13.4 kJ/m with 9.4 kJ/m supplied (the solver's own energy audit stops it).
-  // 15 degrees passes with both solvers and stays asserted on both.
-  if (integrator == Integrator::Implicit && degrees != 15)
-    GTEST_SKIP() << "implicit solver creates energy on this corner scene (see the comment): substep only";
   const Scene scene = corner_scene(integrator, degrees);
   RunAudit audit;
   const SimulationResult r = simulate(scene, audit_hooks(audit, scene.gravity));
@@ -103,15 +92,6 @@ TEST_P(SubstepScenesSolver, WedgeOnCorner) {
 // above the step (its front edge) and must drop over it and slide on.
 TEST_P(SubstepScenesSolver, SlideOverStep) {
   const Integrator integrator = GetParam();
-  // The implicit solver genuinely fails this scene, so it is asserted on the substep
-  // solver only (reported to the lead): as the slider tips over the step and its front
-  // lands on the lower plane (t = 1.1-1.18 s) it is thrown back up (v_y = +0.79 m/s) and
-  // the run fails at t = 1.18 s with 101 kJ/m of kinetic energy against 6.8 kJ/m
-  // supplied. It fails the same way with a 2 cm step, and with no step at all (two fixed
-  // blocks flush, t = 0.98 s); at time.step 5e-4 at t = 1.85 s; at 2e-4 it completes.
-  if (integrator == Integrator::Implicit)
-    GTEST_SKIP() << "implicit solver blows up where the slider crosses from one fixed block to the next (see the "
-                    "comment): substep only";
   Scene s = base_scene(2.0, 1.0e-3, 0.01, integrator);
   add_interface(s, "slope", 15.0);
   s.default_interface = 0;

@@ -87,14 +87,15 @@ void write_summary_json(const std::string& path, const std::string& scene_path, 
               {"final_penalty", s.run.final_penalty}};
   const SolverReport& solver = s.solver;
   j["solver"] = {{"integrator", to_string(solver.integrator)}, {"reason", solver.reason}};
+  // Both solvers measure the deepest overlap of a contact point at the end of every step.
+  j["solver"]["worst_penetration"] = solver.worst_penetration;
+  j["solver"]["worst_penetration_ratio"] = solver.worst_penetration_ratio;
+  j["solver"]["worst_penetration_time"] = solver.worst_penetration_time;
+  j["solver"]["worst_penetration_at"] = solver.worst_penetration_at;
   if (solver.integrator == Integrator::Substep) {
     const double steps = std::max<double>(1.0, static_cast<double>(s.run.steps));
     j["solver"]["substeps"] = solver.substeps;
     j["solver"]["mean_contact_points"] = static_cast<double>(solver.contact_points) / steps;
-    j["solver"]["worst_penetration"] = solver.worst_penetration;
-    j["solver"]["worst_penetration_ratio"] = solver.worst_penetration_ratio;
-    j["solver"]["worst_penetration_time"] = solver.worst_penetration_time;
-    j["solver"]["worst_penetration_at"] = solver.worst_penetration_at;
     j["solver"]["unconverged_points"] = solver.unconverged_points;
     j["solver"]["fast_steps"] = solver.fast_steps;
   }

@@ -2,9 +2,8 @@
 
 #include <cmath>
 
-#include "forward/contact_geometry.hpp"
-#include "forward/contact_law.hpp"
 #include "forward/mass_matrix.hpp"
+#include "forward/step/point_springs.hpp"
 
 namespace ddafit {
 namespace {
@@ -45,48 +44,32 @@ void add_spring(const Block& bi, const Block& bj, const Vec6& a, const Vec6& b, 
 
 }  // namespace
 
-double sliding_friction_force(const BlockSystem& s, const Contact& c) {
-  const Interface& face = s.interfaces[c.interface];
-  // The step's own slip would feed back inside the open-close iteration (a trial pass
-  // that slips far degrades friction, which lets the next pass slip further); the last
-  // accepted step's slip predicts it to second order without that loop.
-  const double mid_slip = c.accumulated_slip + 0.5 * c.last_step_slip;
-  return c.normal_force * friction_coefficient(face, mid_slip, c.critical_distance);
-}
-
-double locked_shear_limit(const BlockSystem& s, const Contact& c) {
-  const Interface& face = s.interfaces[c.interface];
-  const double mid_slip = c.accumulated_slip + 0.5 * c.last_step_slip;
-  return shear_strength(face, c.normal_force, mid_slip, c.critical_distance, c.bonded, c.bond_length);
-}
-
-void assemble(const BlockSystem& s, const std::vector<Contact>& contacts, const StepParameters& step,
-              BlockSparseMatrix& k, Eigen::VectorXd& f) {
+void assemble(const BlockSystem& s, const ContactSet& contacts, const StepParameters& step, BlockSparseMatrix& k,
+              Eigen::VectorXd& f) {
   k.reset(s.free_block_count);
   f.setZero(6 * s.free_block_count);
   assemble_blocks(s, step, k, f);
-  for (const Contact& c : contacts) {
-    const Block& bi = s.blocks[c.block_i];
-    const Block& bj = s.blocks[c.block_j];
-    if (c.state == ContactState::Open) {
-      // Keep the pair in the sparsity pattern, so that contacts opening and closing
-      // during the open-close iteration do not force a new symbolic analysis.
-      if (bi.unknown >= 0 && bj.unknown >= 0) k.add(bi.unknown, bj.unknown, Mat6::Zero());
-      continue;
-    }
-    const ContactLinearization lin = linearize_contact(s, c);
-    // Normal spring on d_n = A / l: stiffness p / l^2 on A.
-    const double l2 = lin.edge_length * lin.edge_length;
-    // Shifted so that the spring is unloaded at spring_reference() (assemble.hpp).
-    const double area0 = lin.area0 - spring_reference(c, step) * lin.edge_length;
-    add_spring(bi, bj, lin.e, lin.g, area0, step.penalty / l2, k, f);
-    if (c.state == ContactState::Locked) {
-      add_spring(bi, bj, lin.es, lin.gs, lin.shear0, step.shear_penalty, k, f);
-    } else {
-      // Sliding: a known friction force opposing the slip, at P1 on i and P0 on j.
-      const double force = c.slip_direction * sliding_friction_force(s, c);
-      if (bi.unknown >= 0) f.segment<6>(6 * bi.unknown) -= force * lin.es;
-      if (bj.unknown >= 0) f.segment<6>(6 * bj.unknown) -= force * lin.gs;
+  for (const ContactManifold& m : contacts.manifolds) {
+    const Block& ba = s.blocks[m.block_a];
+    const Block& bb = s.blocks[m.block_b];
+    // Keep the pair in the sparsity pattern even while its points are open, so that
+    // contacts opening and closing during the open-close iteration do not force a new
+    // symbolic analysis.
+    if (ba.unknown >= 0 && bb.unknown >= 0) k.add(ba.unknown, bb.unknown, Mat6::Zero());
+    for (int q = 0; q < m.point_count; ++q) {
+      const ContactPoint& p = m.points[q];
+      if (p.spring.state == ContactState::Open) continue;
+      const PointSprings lin = point_springs(s, m, p);
+      // Normal spring (p/2) (d_n - reference)^2, unloaded at spring_reference() (assemble.hpp).
+      add_spring(ba, bb, lin.normal_a, lin.normal_b, lin.gap0 - spring_reference(p, step), step.penalty, k, f);
+      if (p.spring.state == ContactState::Locked) {
+        add_spring(ba, bb, lin.shear_a, lin.shear_b, p.spring.shear_offset, step.shear_penalty, k, f);
+      } else {
+        // Sliding: a known friction force opposing the slip of b relative to a.
+        const double force = p.spring.slip_direction * sliding_friction_force(m, p);
+        if (ba.unknown >= 0) f.segment<6>(6 * ba.unknown) -= force * lin.shear_a;
+        if (bb.unknown >= 0) f.segment<6>(6 * bb.unknown) -= force * lin.shear_b;
+      }
     }
   }
 }

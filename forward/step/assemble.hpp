@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "forward/block_system.hpp"
-#include "forward/contact.hpp"
+#include "forward/contact/contact_types.hpp"
 #include "forward/sparse_system.hpp"
 
 namespace ddafit {
@@ -34,20 +34,17 @@ struct StepParameters {
 // spring's energy as a kick (0.4 m at the Vajont penalty threw blocks at 1000 m/s);
 // shifting the spring's zero pushes the overlap out at a bounded speed instead, as game
 // engines cap their push-out velocity.
-inline double spring_reference(const Contact& c, const StepParameters& step) {
-  return std::min(0.0, c.start_gap + step.pushout);
+inline double spring_reference(const ContactPoint& p, const StepParameters& step) {
+  return std::min(0.0, p.separation + step.pushout);
 }
 
-void assemble(const BlockSystem& system, const std::vector<Contact>& contacts,
-              const StepParameters& step, BlockSparseMatrix& k, Eigen::VectorXd& f);
+void assemble(const BlockSystem& system, const ContactSet& contacts, const StepParameters& step,
+              BlockSparseMatrix& k, Eigen::VectorXd& f);
 
-// Friction force magnitude of a sliding contact: N tan(phi) with phi degraded at the
-// middle of the step's slip (seed Eq. 3 at d + |slip|/2, the slip predicted by the last
-// accepted step's), which keeps the lag of an explicit update out of the acceleration.
-double sliding_friction_force(const BlockSystem& system, const Contact& contact);
-
-// Largest shear force a locked contact holds before it slides: the sliding friction plus,
-// while bonded, the cohesion (forward/contact_law.hpp, Mohr-Coulomb).
-double locked_shear_limit(const BlockSystem& system, const Contact& contact);
+// Friction force magnitude of a sliding point: N tan(phi), phi from its face's slip history
+// predicted to the middle of the step (forward/contact/contact_law.hpp, seed Eq. 2-3).
+inline double sliding_friction_force(const ContactManifold& m, const ContactPoint& p) {
+  return m.friction * p.spring.normal_force;
+}
 
 }  // namespace ddafit

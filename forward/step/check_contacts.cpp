@@ -3,83 +3,114 @@
 #include <algorithm>
 #include <cmath>
 
-#include "forward/contact_geometry.hpp"
-#include "forward/contact_law.hpp"
+#include "forward/contact/contact_law.hpp"
+#include "forward/step/point_springs.hpp"
 
 namespace ddafit {
+namespace {
 
-ContactCheck check_contacts(const BlockSystem& s, std::vector<Contact>& contacts, const Eigen::VectorXd& d,
+// Classifies one point from this iterate's gap and slip (the contact law, Mohr-Coulomb).
+void classify(const Interface& face, const ContactManifold& m, ContactPoint& p, double compression,
+              const StepParameters& step) {
+  SpringState& c = p.spring;
+  const ContactState before = c.state;
+  const bool stays_open = before == ContactState::Open && c.normal_gap > -step.contact_tolerance;
+  if (-compression > tensile_capacity(face, p) || stays_open) {  // tension cut-off
+    c.state = ContactState::Open;
+    c.normal_force = 0.0;
+    return;
+  }
+  c.normal_force = std::max(compression, 0.0);
+  if (before == ContactState::Open) {
+    // Just closed. Its normal force is that of an iterate in which nothing held the blocks
+    // apart there (an impact read 3.4 MN/m where the closed spring carries a fraction of
+    // it): as a friction force for the next iterate it threw a wedge landing on a corner
+    // back at 1.4 m/s. So the next iterate has no friction from it: the point slides the
+    // way it moved in this iterate (a landing with tangential speed is a sliding impact),
+    // or locks if it hardly moved; the iterate after, with its spring in place, has the
+    // real normal force. Locked at once, it stopped a block landing at 2 m/s dead in one
+    // step, and the sign of the rebound it gave the shear spring became the slide's.
+    c.normal_force = 0.0;
+    if (std::abs(c.step_slip) > step.contact_tolerance) {
+      c.state = ContactState::Sliding;
+      c.slip_direction = c.step_slip > 0.0 ? 1.0 : -1.0;
+    } else {
+      c.state = ContactState::Locked;
+    }
+    return;
+  }
+  if (before == ContactState::Sliding) {
+    // A sliding point stays sliding while it keeps slipping the same way (sliding_slip:
+    // measured so that a spring letting go is not read as a backward slip). A point on the
+    // point of sticking has a slip of round-off size of either sign; the allowance (the
+    // contact tolerance, plus 1 % of the elastic offset that the friction force gives the
+    // shear spring) stops it flipping between sliding and locked from one pass to the next.
+    const double allowance = step.contact_tolerance + 0.01 * sliding_friction_force(m, p) / step.shear_penalty;
+    if (sliding_slip(c) * c.slip_direction <= -allowance) c.state = ContactState::Locked;
+    return;
+  }
+  // Locked (or just closed): the shear spring must stay within Mohr-Coulomb.
+  const double limit = coulomb_cap(m.friction, c.normal_force, cohesive_strength(face, p));
+  const double shear = step.shear_penalty * (c.shear_offset + c.step_slip);
+  if (std::abs(shear) <= limit) {
+    c.state = ContactState::Locked;
+  } else {
+    c.state = ContactState::Sliding;
+    c.slip_direction = shear > 0.0 ? 1.0 : -1.0;
+  }
+}
+
+}  // namespace
+
+ContactCheck check_contacts(const BlockSystem& s, ContactSet& contacts, const Eigen::VectorXd& d,
                             const StepParameters& step) {
   ContactCheck result;
   double largest_change = 0.0, largest_force = 0.0;
-  for (int k = 0; k < static_cast<int>(contacts.size()); ++k) {
-    Contact& c = contacts[k];
-    const Block& bi = s.blocks[c.block_i];
-    const Block& bj = s.blocks[c.block_j];
-    const ContactLinearization lin = linearize_contact(s, c);
-    c.normal_gap = (lin.area0 + contact_form(lin.e, lin.g, bi, bj, d)) / lin.edge_length;
-    c.step_slip = contact_form(lin.es, lin.gs, bi, bj, d);
-    c.shear_offset = lin.shear0 + c.step_slip;
-
-    const ContactState before = c.state;
-    const double force_before = c.normal_force;
-    const Interface& face = s.interfaces[c.interface];
-    const double tension_cap = tensile_capacity(face, c.bonded, c.bond_length);
-    // N, negative in tension; the spring is unloaded at spring_reference (assemble.hpp).
-    const double compression = -step.penalty * (c.normal_gap - spring_reference(c, step));
-
-    const bool stays_open = before == ContactState::Open && c.normal_gap > -step.contact_tolerance;
-    if (-compression > tension_cap || stays_open) {
-      c.state = ContactState::Open;
-      c.normal_force = 0.0;
-    } else {
-      c.normal_force = std::max(compression, 0.0);
-      if (before == ContactState::Sliding) {
-        // A sliding contact stays sliding while it keeps slipping the same way
-        // (sliding_slip: measured so that a spring letting go is not read as a
-        // backward slip). A contact on the point of sticking has a slip of round-off
-        // size of either sign; the allowance (the contact tolerance, plus 1 % of the
-        // elastic offset that the friction force gives the shear spring) stops it
-        // flipping between sliding and locked from one pass to the next.
-        const double allowance =
-            step.contact_tolerance + 0.01 * sliding_friction_force(s, c) / step.shear_penalty;
-        if (sliding_slip(c) * c.slip_direction <= -allowance) c.state = ContactState::Locked;
-      } else {
-        // Locked (or just closed): the shear spring must stay within Mohr-Coulomb.
-        const double limit = locked_shear_limit(s, c);
-        const double shear = step.shear_penalty * c.shear_offset;
-        if (std::abs(shear) <= limit) {
-          c.state = ContactState::Locked;
-        } else {
-          c.state = ContactState::Sliding;
-          c.slip_direction = shear > 0.0 ? 1.0 : -1.0;
-        }
+  for (int k = 0; k < static_cast<int>(contacts.manifolds.size()); ++k) {
+    ContactManifold& m = contacts.manifolds[k];
+    const Block& ba = s.blocks[m.block_a];
+    const Block& bb = s.blocks[m.block_b];
+    const Interface& face = s.interfaces[m.interface];
+    for (int q = 0; q < m.point_count; ++q) {
+      ContactPoint& p = m.points[q];
+      SpringState& c = p.spring;
+      const PointSprings lin = point_springs(s, m, p);
+      c.normal_gap = lin.gap0 + contact_form(lin.normal_a, lin.normal_b, ba, bb, d);
+      c.step_slip = contact_form(lin.shear_a, lin.shear_b, ba, bb, d);
+      const ContactState before = c.state;
+      const double force_before = c.normal_force;
+      // N, negative in tension; the spring is unloaded at spring_reference (assemble.hpp).
+      const double compression = -step.penalty * (c.normal_gap - spring_reference(p, step));
+      classify(face, m, p, compression, step);
+      // A point that has cycled between states within the step keeps its state for the
+      // rest of the step: its gap and slip swing by small amounts as its neighbours change.
+      // The one exception is closing: a point held open while it penetrates lets the
+      // block run into the other unopposed, and the spring releases that overlap as energy
+      // once it closes (a tiled 1500-block mass blew up at its first step when cycling
+      // corners were held open at 7 mm of penetration). Closing wins, so every point can
+      // change from open to closed but not back, and the iteration still settles. Locking
+      // wins too: a sliding point locks only when its slip has turned against its friction
+      // force, and held sliding it would push the blocks along (friction doing work on them:
+      // a stack of five blocks rocked itself over that way).
+      const bool closing = before == ContactState::Open && c.state != ContactState::Open;
+      const bool locking = before == ContactState::Sliding && c.state == ContactState::Locked;
+      if (c.state != before && c.state_changes >= kFreezeAfterChanges && !closing && !locking) {
+        c.state = before;
+        c.normal_force = before == ContactState::Open ? 0.0 : std::max(compression, 0.0);
+        ++result.frozen;
       }
+      if (c.state != before) {
+        ++c.state_changes;
+        ++result.changed;
+        if (result.first_changed.manifold < 0) result.first_changed = {k, q};
+      } else if (c.state == ContactState::Sliding) {
+        // Only sliding points feed N back into the load vector.
+        largest_change = std::max(largest_change, std::abs(c.normal_force - force_before));
+      }
+      largest_force = std::max(largest_force, c.normal_force);
     }
-    // A contact that has cycled between states within the step keeps its state for the
-    // rest of the step: its gap and slip swing by small amounts as its neighbours change.
-    // The one exception is closing: a contact held open while it penetrates lets the
-    // vertex run into the block unopposed, and the spring releases that overlap as energy
-    // once it closes (a tiled 1500-block mass blew up at its first step when cycling
-    // corners were held open at 7 mm of penetration). Closing wins, so every contact can
-    // change from open to closed but not back, and the iteration still settles.
-    const bool closing = before == ContactState::Open && c.state != ContactState::Open;
-    if (c.state != before && c.state_changes >= kFreezeAfterChanges && !closing) {
-      c.state = before;
-      c.normal_force = before == ContactState::Open ? 0.0 : std::max(compression, 0.0);
-      ++result.frozen;
-    }
-    if (c.state != before) {
-      ++c.state_changes;
-      ++result.changed;
-      if (result.first_changed < 0) result.first_changed = k;
-    } else if (c.state == ContactState::Sliding) {
-      // Only sliding contacts feed N back into the load vector.
-      largest_change = std::max(largest_change, std::abs(c.normal_force - force_before));
-    }
-    largest_force = std::max(largest_force, c.normal_force);
   }
-  // Relative to the largest contact force: a nearly unloaded contact whose N changes by
+  // Relative to the largest contact force: a nearly unloaded point whose N changes by
   // half of nothing does not hold up the iteration.
   result.max_force_change = largest_force > 0.0 ? largest_change / largest_force : 0.0;
   return result;

@@ -3,8 +3,17 @@
 #include "forward/step/check_contacts.hpp"
 
 namespace ddafit {
+namespace {
 
-OpenCloseResult open_close_iterate(const BlockSystem& s, std::vector<Contact>& contacts,
+int point_count(const ContactSet& contacts) {
+  int n = 0;
+  for (const ContactManifold& m : contacts.manifolds) n += m.point_count;
+  return n;
+}
+
+}  // namespace
+
+OpenCloseResult open_close_iterate(const BlockSystem& s, ContactSet& contacts,
                                    const StepParameters& step, const SimulationOptions& options,
                                    SparseSolver& solver, BlockSparseMatrix& k, Eigen::VectorXd& f,
                                    Eigen::VectorXd& d, StepProfile& profile) {
@@ -42,7 +51,7 @@ OpenCloseResult open_close_iterate(const BlockSystem& s, std::vector<Contact>& c
     // their forces differ by the swing of their own gap or slip. Cutting the step for
     // them instead lowers the contact step number dt sqrt(p/m), which undamps contact
     // vibration and makes more contacts change (docs/theory.md, open-close iteration).
-    const bool nearly = last && check.changed <= kUnsettledAllowance * static_cast<double>(contacts.size());
+    const bool nearly = last && check.changed <= kUnsettledAllowance * static_cast<double>(point_count(contacts));
     if (settled || (last && check.changed == 0) || nearly) {
       result.converged = true;
       result.unsettled = check.changed;

@@ -8,10 +8,11 @@
 #include <vector>
 
 #include "forward/block_system.hpp"
-#include "forward/contact.hpp"
+#include "forward/contact/contact_types.hpp"
 #include "forward/options.hpp"
 #include "forward/sparse_system.hpp"
 #include "forward/step/assemble.hpp"
+#include "forward/step/check_contacts.hpp"
 #include "forward/step_profile.hpp"
 
 namespace ddafit {
@@ -20,7 +21,7 @@ struct OpenCloseResult {
   bool converged = false;
   bool solver_failed = false;
   int iterations = 0;
-  int unsettled_contact = -1;  // a contact still changing state when the iteration gave up
+  PointRef unsettled_contact;  // a point still changing state when the iteration gave up
   int unsettled = 0;           // contacts accepted while still changing on the last pass
   std::string reason;
 };
@@ -33,7 +34,7 @@ constexpr double kNormalForceTolerance = 1e-3;
 // Share of contacts that may still change state on the last pass of an accepted step.
 constexpr double kUnsettledAllowance = 0.005;
 
-OpenCloseResult open_close_iterate(const BlockSystem& system, std::vector<Contact>& contacts,
+OpenCloseResult open_close_iterate(const BlockSystem& system, ContactSet& contacts,
                                    const StepParameters& step, const SimulationOptions& options,
                                    SparseSolver& solver, BlockSparseMatrix& k, Eigen::VectorXd& f,
                                    Eigen::VectorXd& d, StepProfile& profile);

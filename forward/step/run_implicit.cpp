@@ -3,11 +3,13 @@
 #include <algorithm>
 #include <sstream>
 
+#include "forward/contact/detect_contacts.hpp"
+#include "forward/contact/overlap.hpp"
 #include "forward/sparse_system.hpp"
 #include "forward/step/control_time_step.hpp"
 #include "forward/step/containment_check.hpp"
 #include "forward/step/energy_check.hpp"
-#include "forward/step/find_contacts.hpp"
+#include "forward/step/new_points.hpp"
 #include "forward/step/open_close_iterate.hpp"
 #include "forward/step/settle_contacts.hpp"
 #include "forward/step/update_blocks.hpp"
@@ -19,18 +21,26 @@ namespace {
 // the elastic shortening of a tall mass, not for a block that is falling over.
 constexpr double kSettleShiftSteps = 10.0;
 
-std::string describe_contact(const BlockSystem& s, const Contact& c) {
-  const Block& bi = s.blocks[c.block_i];
+// Overlap tolerated without changing a contact's state, as a fraction of the largest
+// displacement allowed per step (the separating-axis tolerance of the manifold).
+constexpr double kSlopRatio = 1e-3;
+
+std::string describe_contact(const BlockSystem& s, const ContactSet& contacts, PointRef at) {
+  const ContactManifold& m = contacts.manifolds[at.manifold];
+  const ContactPoint& p = m.points[at.point];
   std::ostringstream out;
-  const Block& bj = s.blocks[c.block_j];
-  const Vec2& p1 = s.vertices[c.vertex];
-  const Vec2& p2 = s.vertices[c.edge];
-  const Vec2& p3 = s.vertices[s.next_vertex(c.edge)];
-  out << "contact of block '" << s.block_names[c.block_i] << "' vertex " << (c.vertex - bi.first_vertex) << " at ("
-      << p1.x() << ", " << p1.y() << ") on edge " << (c.edge - bj.first_vertex) << " (" << p2.x() << ", " << p2.y()
-      << ")-(" << p3.x() << ", " << p3.y() << ") of block '" << s.block_names[c.block_j] << "' ("
-      << to_string(c.state) << ", gap " << c.normal_gap << " m)";
+  out << "contact of blocks '" << s.block_names[m.block_a] << "' and '" << s.block_names[m.block_b] << "' at ("
+      << p.anchor.x() << ", " << p.anchor.y() << ") (" << to_string(p.spring.state) << ", gap " << p.spring.normal_gap
+      << " m)";
   return out.str();
+}
+
+// The deepest overlap at the end of an accepted step (the points' gaps from the step's
+// unknowns), relative to the smaller free block of its pair.
+void measure_overlaps(const BlockSystem& s, const ContactSet& contacts, double time, WorstOverlap& worst) {
+  for (const ContactManifold& m : contacts.manifolds)
+    for (int q = 0; q < m.point_count; ++q)
+      if (m.points[q].spring.state != ContactState::Open) note_overlap(s, m, -m.points[q].spring.normal_gap, time, worst);
 }
 
 }  // namespace
@@ -46,9 +56,16 @@ void run_implicit(const Scene& scene, BlockSystem& system, RunRecorder& recorder
   const SimulationOptions& options = scene.options;
   TimeStepControl control =
       make_time_step_control(options, scene.max_step, system.half_model_size, automatic_penalty(scene));
-  ContactSearch search;
-  search.search_distance = options.search_distance_factor * control.max_displacement;
-  search.first_step = true;
+  ContactDetection detection;
+  detection.settings.margin = options.search_distance_factor * control.max_displacement;
+  detection.settings.linear_slop = kSlopRatio * control.max_displacement;
+  detection.settings.first_step = true;
+  detection.settings.gravity = scene.gravity;
+  if (const std::string bad = prepare_detection(system, detection); !bad.empty()) {
+    summary.status = RunStatus::InvalidScene;
+    summary.message = "block '" + bad + "': its polygon could not be split into convex pieces for contact";
+    return;
+  }
 
   // The springs and loads of one attempt at a step of length dt.
   const auto step_parameters = [&](double dt) {
@@ -56,7 +73,8 @@ void run_implicit(const Scene& scene, BlockSystem& system, RunRecorder& recorder
                           options.contact_tolerance_ratio * control.max_displacement,
                           options.max_pushout_speed * dt};
   };
-  std::vector<Contact> contacts, saved;
+  ContactSet contacts, saved;
+  WorstOverlap worst;
   BlockSparseMatrix k;
   Eigen::VectorXd f, d;
   SolverOptions solver_options;
@@ -72,22 +90,25 @@ void run_implicit(const Scene& scene, BlockSystem& system, RunRecorder& recorder
     std::string problem;
     {
       ScopedTimer timer(profile.find_contacts);
-      problem = find_contacts(system, search, contacts);
+      detection.settings.first_step = true;
+      problem = detect_contacts(system, detection, contacts);
     }
+    ScopedTimer timer(profile.settle);
+    const StepParameters step = step_parameters(control.step);
+    const bool settled = problem.empty() && settle_contacts(system, detection, contacts, step, options.settle_passes,
+                                                            kSettleShiftSteps * control.max_displacement, solver, problem);
     if (!problem.empty()) {
       summary.status = RunStatus::InvalidScene;
       summary.message = "t = 0: " + problem;
       return;
     }
-    ScopedTimer timer(profile.settle);
-    const StepParameters step = step_parameters(control.step);
-    if (!settle_contacts(system, contacts, step, options.settle_passes, kSettleShiftSteps * control.max_displacement,
-                         solver)) {
+    if (!settled) {
       summary.status = RunStatus::Failed;
       summary.message = "t = 0: the initial contact settling could not be solved: check for blocks that "
                         "overlap or a penalty far stiffer than the blocks";
       return;
     }
+    detection.settings.first_step = false;  // bonds formed between the blocks touching once settled
   }
 
   recorder.start(system);
@@ -103,13 +124,13 @@ void run_implicit(const Scene& scene, BlockSystem& system, RunRecorder& recorder
   while (!recorder.finished(time) && !recorder.interrupted(time, system)) {
     {
       ScopedTimer timer(profile.find_contacts);
-      const std::string problem = find_contacts(system, search, contacts);
+      const std::string problem = detect_contacts(system, detection, contacts);
       if (!problem.empty()) {
         fail(RunStatus::InvalidScene, problem);
         break;
       }
+      start_new_points(system, contacts, control.step, options.contact_tolerance_ratio * control.max_displacement);
     }
-    search.first_step = false;
     saved = contacts;
     bool accepted = false;
     double attempt = 0.0;
@@ -125,18 +146,18 @@ void run_implicit(const Scene& scene, BlockSystem& system, RunRecorder& recorder
       double factor = options.step_cut_factor;
       if (!oc.converged) {
         why = oc.reason;
-        if (oc.unsettled_contact >= 0) why += " at the " + describe_contact(system, contacts[oc.unsettled_contact]);
+        if (oc.unsettled_contact.manifold >= 0) why += " at the " + describe_contact(system, contacts, oc.unsettled_contact);
       } else if (const double moved = max_vertex_displacement(system, d); moved > control.max_displacement) {
         why = "a vertex moved " + std::to_string(moved) + " m in one step (limit " +
               std::to_string(control.max_displacement) + " m)";
         factor = std::clamp(0.8 * control.max_displacement / moved, 0.1, 0.9);
       } else {
-        int deepest = -1;
+        PointRef deepest;
         // Half the search distance: deeper, a contact is close to being lost altogether.
         const double depth =
-            max_penetration(contacts, step, control.max_penetration, 0.5 * search.search_distance, &deepest);
+            max_penetration(contacts, step, control.max_penetration, 0.5 * detection.settings.margin, &deepest);
         if (depth > control.max_penetration) {
-          const std::string where = describe_contact(system, contacts[deepest]);
+          const std::string where = describe_contact(system, contacts, deepest);
           if (raise_penalty(control, options)) {
             contacts = saved;
             ++run.penalty_raises;
@@ -170,6 +191,7 @@ void run_implicit(const Scene& scene, BlockSystem& system, RunRecorder& recorder
       update_blocks(system, contacts, d, attempt, options.shear_penalty_ratio * control.penalty);
     }
     time = landing >= 0.0 ? landing : time + attempt;
+    measure_overlaps(system, contacts, time, worst);
     ++run.steps;
     run.smallest_step = std::min(run.smallest_step, attempt);
     run.largest_step = std::max(run.largest_step, attempt);
@@ -191,6 +213,7 @@ void run_implicit(const Scene& scene, BlockSystem& system, RunRecorder& recorder
   run.factorizations = solver.counters().factorizations;
   run.cg_solves = solver.counters().cg_solves;
   run.final_penalty = control.penalty;
+  report_overlap(system, worst, summary.solver);
 }
 
 }  // namespace ddafit

@@ -17,7 +17,7 @@
 #include <vector>
 
 #include "forward/block_system.hpp"
-#include "forward/contact.hpp"
+#include "forward/contact/detect_contacts.hpp"
 #include "forward/sparse_system.hpp"
 #include "forward/step/assemble.hpp"
 
@@ -30,8 +30,11 @@ constexpr double kSettleStepScale = 30.0;
 // fixed passes left 3 cm of settlement that the dynamics released as bouncing.
 constexpr double kSettleTolerance = 1e-5;
 
-// Runs at most `passes` passes. Returns false if the solver fails.
-bool settle_contacts(BlockSystem& system, std::vector<Contact>& contacts, const StepParameters& step,
-                     int passes, double max_shift, SparseSolver& solver);
+// Runs at most `passes` passes, each followed by a new detection (`detection`, whose
+// first_step stays set so that the contacts touching once settled bond). Returns false if
+// the solver fails; `problem` names a pair of touching blocks without an interface.
+bool settle_contacts(BlockSystem& system, ContactDetection& detection, ContactSet& contacts,
+                     const StepParameters& step, int passes, double max_shift, SparseSolver& solver,
+                     std::string& problem);
 
 }  // namespace ddafit

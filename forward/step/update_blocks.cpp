@@ -3,7 +3,10 @@
 #include <algorithm>
 #include <cmath>
 
+#include "forward/contact/contact_law.hpp"
+#include "forward/contact/slip_history.hpp"
 #include "forward/step/assemble.hpp"
+#include "forward/step/point_springs.hpp"
 
 namespace ddafit {
 
@@ -38,26 +41,28 @@ void displace_block(BlockSystem& s, int b, const Vec6& db, bool measured) {
   refresh_block_geometry(s, b);
 }
 
-double max_penetration(const std::vector<Contact>& contacts, const StepParameters& step, double limit,
-                       double hard_limit, int* which) {
+double max_penetration(const ContactSet& contacts, const StepParameters& step, double limit, double hard_limit,
+                       PointRef* which) {
   double deepest = 0.0;
-  for (int k = 0; k < static_cast<int>(contacts.size()); ++k) {
-    const Contact& c = contacts[k];
-    // Only contacts this step drove deeper: one found already deep (a corner that came
-    // round a corner) cannot be mended by a stiffer spring within the step, only pushed
-    // back out over the next steps.
-    const double depth = std::max(spring_reference(c, step) - c.normal_gap,
-                                  -c.normal_gap - (hard_limit - limit));
-    if (c.state != ContactState::Open && c.normal_gap < c.start_gap && depth > deepest) {
-      deepest = depth;
-      if (which) *which = k;
+  for (int k = 0; k < static_cast<int>(contacts.manifolds.size()); ++k) {
+    const ContactManifold& m = contacts.manifolds[k];
+    for (int q = 0; q < m.point_count; ++q) {
+      const ContactPoint& p = m.points[q];
+      const SpringState& c = p.spring;
+      // Only points this step drove deeper: one found already deep (a corner that came
+      // round a corner) cannot be mended by a stiffer spring within the step, only pushed
+      // back out over the next steps.
+      const double depth = std::max(spring_reference(p, step) - c.normal_gap, -c.normal_gap - (hard_limit - limit));
+      if (c.state != ContactState::Open && c.normal_gap < p.separation && depth > deepest) {
+        deepest = depth;
+        if (which) *which = {k, q};
+      }
     }
   }
   return deepest;
 }
 
-void update_blocks(BlockSystem& s, std::vector<Contact>& contacts, const Eigen::VectorXd& d, double dt,
-                   double shear_penalty) {
+void update_blocks(BlockSystem& s, ContactSet& contacts, const Eigen::VectorXd& d, double dt, double shear_penalty) {
   for (int bid = 0; bid < static_cast<int>(s.blocks.size()); ++bid) {
     Block& b = s.blocks[bid];
     if (b.unknown < 0) continue;
@@ -66,27 +71,29 @@ void update_blocks(BlockSystem& s, std::vector<Contact>& contacts, const Eigen::
     b.velocity = (2.0 / dt) * db - b.velocity;
     displace_block(s, bid, db, true);
   }
-
-  for (Contact& c : contacts) {
-    if (c.state == ContactState::Locked) {
-      c.last_step_slip = 0.0;
-      continue;  // keeps its reference point, fixed to block j
+  for (ContactManifold& m : contacts.manifolds) {
+    for (int q = 0; q < m.point_count; ++q) {
+      ContactPoint& p = m.points[q];
+      SpringState& c = p.spring;
+      p.slip = 0.0;
+      if (c.state == ContactState::Locked) {
+        c.shear_offset += c.step_slip;  // the spring keeps its offset
+        continue;
+      }
+      break_bond(p);
+      if (c.state == ContactState::Sliding) {
+        p.slip = std::abs(sliding_slip(c));  // seed Eq. 2
+        // The spring trails the slip by the friction force over its stiffness, so that
+        // should the point lock in the next step, its spring takes over at the friction
+        // force instead of at zero: a sudden loss of resistance at every stick feeds
+        // stick-slip vibration at short time steps.
+        c.shear_offset = c.slip_direction * sliding_friction_force(m, p) / shear_penalty;
+      } else {
+        c.shear_offset = 0.0;
+      }
     }
-    const Vec2& p2 = s.vertices[c.edge];
-    const Vec2 e = s.vertices[s.next_vertex(c.edge)] - p2;
-    double offset = 0.0;
-    c.last_step_slip = c.state == ContactState::Sliding ? std::abs(sliding_slip(c)) : 0.0;
-    if (c.state == ContactState::Sliding) {
-      c.accumulated_slip += c.last_step_slip;  // seed Eq. 2
-      // The reference trails the vertex by the friction force over the shear spring, so
-      // that should the contact lock in the next step, its spring takes over at the
-      // friction force instead of at zero: a sudden loss of resistance at every stick
-      // feeds stick-slip vibration at short time steps.
-      offset = c.slip_direction * sliding_friction_force(s, c) / shear_penalty;
-    }
-    c.reference_ratio = ((s.vertices[c.vertex] - p2).dot(e) / e.norm() - offset) / e.norm();
-    c.bonded = false;  // cohesion and tension are lost once the contact slides or opens
   }
+  advance_histories(s, contacts);
 }
 
 }  // namespace ddafit

@@ -1,12 +1,13 @@
 // Stage 5 of a step, once it is accepted: move the blocks (exact rotation), carry the
-// velocities and stresses forward, and advance the contacts' slip and reference points.
+// velocities and stresses forward, and advance the contacts' slip and shear springs.
 #pragma once
 
 #include <Eigen/Core>
 #include <vector>
 
 #include "forward/block_system.hpp"
-#include "forward/contact.hpp"
+#include "forward/contact/contact_types.hpp"
+#include "forward/step/check_contacts.hpp"
 #include "forward/step/assemble.hpp"
 
 namespace ddafit {
@@ -28,10 +29,14 @@ void displace_block(BlockSystem& system, int b, const Vec6& db, bool measured);
 // hard_limit in all reads as at least as deep as `limit` (the limit the caller compares
 // against): a penalty too soft would otherwise let a block sink a little further every
 // step, each step mending nothing.
-double max_penetration(const std::vector<Contact>& contacts, const StepParameters& step, double limit,
-                       double hard_limit, int* which = nullptr);
+double max_penetration(const ContactSet& contacts, const StepParameters& step, double limit, double hard_limit,
+                       PointRef* which = nullptr);
 
-void update_blocks(BlockSystem& system, std::vector<Contact>& contacts, const Eigen::VectorXd& d,
-                   double time_step, double shear_penalty);
+// Moves the blocks and advances every point's spring: a locked point keeps its shear
+// offset, a sliding one slips (seed Eq. 2, into its face's slip history) and its shear
+// spring trails it at the friction force, an open one lets go; bonds are lost once a
+// point slides or opens (forward/contact/contact_law.hpp).
+void update_blocks(BlockSystem& system, ContactSet& contacts, const Eigen::VectorXd& d, double time_step,
+                   double shear_penalty);
 
 }  // namespace ddafit

@@ -1,5 +1,5 @@
 #include "forward/substep/block_stress.hpp"
-#include "forward/substep/parallel.hpp"
+#include "forward/parallel.hpp"
 
 #include <Eigen/LU>
 #include <algorithm>
@@ -13,7 +13,7 @@ constexpr double kMaxStrainPerStep = 1e-5;
 
 }  // namespace
 
-void update_block_stress(BlockSystem& s, const std::vector<SubstepManifold>& manifolds,
+void update_block_stress(BlockSystem& s, const std::vector<ContactManifold>& manifolds,
                          const std::vector<char>& deformable, double duration, double relaxation,
                          bool measured) {
   if (std::find(deformable.begin(), deformable.end(), char{1}) == deformable.end()) return;
@@ -23,10 +23,10 @@ void update_block_stress(BlockSystem& s, const std::vector<SubstepManifold>& man
     return Vec3(r.x() * f.x(), r.y() * f.y(), 0.5 * (r.y() * f.x() + r.x() * f.y()));
   };
   std::vector<Vec3> moment(s.blocks.size(), Vec3::Zero());
-  for (const SubstepManifold& m : manifolds) {
+  for (const ContactManifold& m : manifolds) {
     for (int q = 0; q < m.point_count; ++q) {
-      const SubstepPoint& p = m.points[q];
-      const Vec2 impulse = p.step_normal_impulse * m.normal + p.step_tangent_impulse * m.tangent;  // on block b; -impulse on a
+      const ContactPoint& p = m.points[q];
+      const Vec2 impulse = p.impulse.step_normal * m.normal + p.impulse.step_tangent * m.tangent;  // on block b; -impulse on a
       moment[m.block_b] += first_moment(p.rb, impulse);
       moment[m.block_a] -= first_moment(p.ra, impulse);
     }

@@ -26,7 +26,7 @@ namespace ddafit {
 // impulses over `duration`.
 // `relaxation` in (0, 1]: the share of the way to the contacts' mean stress taken now.
 // `measured` false (the quiet start): the measurement points' origins move with the strain.
-void update_block_stress(BlockSystem& system, const std::vector<SubstepManifold>& manifolds,
+void update_block_stress(BlockSystem& system, const std::vector<ContactManifold>& manifolds,
                          const std::vector<char>& deformable, double duration, double relaxation,
                          bool measured);
 

@@ -1,5 +1,5 @@
 #include "forward/substep/integrate.hpp"
-#include "forward/substep/parallel.hpp"
+#include "forward/parallel.hpp"
 
 #include "forward/step/update_blocks.hpp"
 

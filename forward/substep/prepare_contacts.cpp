@@ -1,10 +1,10 @@
 #include "forward/substep/prepare_contacts.hpp"
-#include "forward/substep/parallel.hpp"
+#include "forward/parallel.hpp"
 
 #include <bit>
 #include <cstdint>
 
-#include "forward/contact_law.hpp"
+#include "forward/contact/contact_law.hpp"
 #include "forward/mass_matrix.hpp"
 
 namespace ddafit {
@@ -27,45 +27,37 @@ void compute_block_masses(const BlockSystem& s, std::vector<BlockMass>& masses) 
   }
 }
 
-void update_friction(const BlockSystem& s, const SubstepManifold& m, SubstepPoint& p) {
-  const Interface& face = s.interfaces[m.interface];
-  p.friction = friction_coefficient(face, p.slip + 0.5 * p.last_slip, p.critical_distance);
-}
-
 void prepare_contacts(const BlockSystem& s, const std::vector<BlockMass>& masses, double h,
-                      std::vector<SubstepManifold>& manifolds) {
+                      std::vector<ContactManifold>& manifolds) {
   const long n = static_cast<long>(manifolds.size());
 #pragma omp parallel for schedule(static) if (n >= kParallelMinimum)
   for (long k = 0; k < n; ++k) {
-    SubstepManifold& m = manifolds[k];
+    ContactManifold& m = manifolds[k];
     const BlockMass& ma = masses[m.block_a];
     const BlockMass& mb = masses[m.block_b];
     const Interface& face = s.interfaces[m.interface];
     for (int q = 0; q < m.point_count; ++q) {
-      SubstepPoint& p = m.points[q];
-      p.ra = p.anchor - s.blocks[m.block_a].centroid;
-      p.rb = p.anchor - s.blocks[m.block_b].centroid;
+      ContactPoint& p = m.points[q];
       // J W J^T of a unit impulse along d: 1/m_a + 1/m_b + (r_a x d)^2 / I_a + (r_b x d)^2 / I_b.
       const auto effective = [&](const Vec2& d) {
         const double ca = cross2(p.ra, d), cb = cross2(p.rb, d);
         const double k = ma.inverse_mass + mb.inverse_mass + ma.inverse_inertia * ca * ca + mb.inverse_inertia * cb * cb;
         return k > 0.0 ? 1.0 / k : 0.0;
       };
-      p.normal_mass = effective(m.normal);
-      p.tangent_mass = effective(m.tangent);
-      update_friction(s, m, p);
-      p.step_normal_impulse = p.step_tangent_impulse = 0.0;
-      p.tension_impulse = h * tensile_capacity(face, p.bonded, p.bond_length);
-      p.cohesion_impulse = p.bonded ? h * face.cohesion * p.bond_length : 0.0;
+      p.impulse.normal_mass = effective(m.normal);
+      p.impulse.tangent_mass = effective(m.tangent);
+      p.impulse.step_normal = p.impulse.step_tangent = 0.0;
+      p.impulse.tension = h * tensile_capacity(face, p);
+      p.impulse.cohesion = h * cohesive_strength(face, p);
     }
   }
 }
 
-std::vector<std::vector<int>> colour_manifolds(const BlockSystem& s, const std::vector<SubstepManifold>& manifolds) {
+std::vector<std::vector<int>> colour_manifolds(const BlockSystem& s, const std::vector<ContactManifold>& manifolds) {
   std::vector<std::vector<int>> colours(kSerialColour + 1);
   std::vector<std::uint64_t> used(s.blocks.size(), 0);
   for (int k = 0; k < static_cast<int>(manifolds.size()); ++k) {
-    const SubstepManifold& m = manifolds[k];
+    const ContactManifold& m = manifolds[k];
     const bool fa = s.blocks[m.block_a].fixed, fb = s.blocks[m.block_b].fixed;
     // A fixed block never changes velocity, so it does not constrain the colouring.
     const std::uint64_t taken = (fa ? 0 : used[m.block_a]) | (fb ? 0 : used[m.block_b]);

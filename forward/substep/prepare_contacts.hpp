@@ -13,11 +13,10 @@ namespace ddafit {
 // Inverse mass and inertia per block (substep_types.hpp, BlockMass).
 void compute_block_masses(const BlockSystem& system, std::vector<BlockMass>& masses);
 
-// Lever arms and effective masses of every point, at the start of the step. The
-// friction coefficient is set from the point's slip (seed Eq. 2-3); bonded points get
-// their cohesion and tension as impulses over one substep.
+// Lever arms and effective masses of every point, at the start of the step; bonded points
+// get their cohesion and tension as impulses over one substep h (contact_law.hpp).
 void prepare_contacts(const BlockSystem& system, const std::vector<BlockMass>& masses, double h,
-                      std::vector<SubstepManifold>& manifolds);
+                      std::vector<ContactManifold>& manifolds);
 
 // Groups manifolds into colours such that no two manifolds of a colour share a moving
 // block (Box2D v3's constraint graph): a colour's manifolds can be solved at the same
@@ -26,9 +25,6 @@ void prepare_contacts(const BlockSystem& system, const std::vector<BlockMass>& m
 // none free go to colour kSerialColour, which is solved serially.
 constexpr int kSerialColour = 63;
 std::vector<std::vector<int>> colour_manifolds(const BlockSystem& system,
-                                               const std::vector<SubstepManifold>& manifolds);
-
-// Sets the friction coefficient of a point from its slip, predicted half a substep ahead.
-void update_friction(const BlockSystem& system, const SubstepManifold& m, SubstepPoint& p);
+                                               const std::vector<ContactManifold>& manifolds);
 
 }  // namespace ddafit

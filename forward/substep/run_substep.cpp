@@ -4,11 +4,11 @@
 #include <cmath>
 #include <sstream>
 
+#include "forward/contact/detect_contacts.hpp"
+#include "forward/contact/overlap.hpp"
 #include "forward/step/containment_check.hpp"
 #include "forward/step/energy_check.hpp"
 #include "forward/substep/block_stress.hpp"
-#include "forward/substep/collide.hpp"
-#include "forward/substep/find_pairs.hpp"
 #include "forward/substep/integrate.hpp"
 #include "forward/substep/prepare_contacts.hpp"
 #include "forward/substep/solve_contacts.hpp"
@@ -46,8 +46,9 @@ constexpr int kQuietStartSteps = 500;
 constexpr double kQuietStartTolerance = 1e-4;
 
 struct SubstepWork {
-  SubstepShapes shapes;
-  std::vector<SubstepManifold> manifolds;
+  ContactDetection detection;
+  ContactSet contacts;
+  WorstOverlap worst;
   SweepState state;  // velocities, step moves and masses the sweeps work on
   std::vector<std::vector<int>> colours;
   std::vector<Vec3> start_velocity, moves;
@@ -76,38 +77,28 @@ double block_size(const BlockSystem& s, int b) { return std::sqrt(std::abs(s.blo
 
 // The deepest overlap at the end of the step, relative to the smaller block of its pair;
 // and the points still closing after the last sweep.
-void measure_contacts(const BlockSystem& s, const SubstepWork& w, double time, double converged_speed,
+void measure_contacts(const BlockSystem& s, SubstepWork& w, double time, double converged_speed,
                       SolverReport& report) {
-  for (const SubstepManifold& m : w.manifolds) {
-    const double size = std::min(s.blocks[m.block_a].fixed ? 1e300 : block_size(s, m.block_a),
-                                 s.blocks[m.block_b].fixed ? 1e300 : block_size(s, m.block_b));
+  for (const ContactManifold& m : w.contacts.manifolds) {
     const Vec3& va = w.state.velocity[m.block_a];
     const Vec3& vb = w.state.velocity[m.block_b];
     for (int q = 0; q < m.point_count; ++q) {
-      const SubstepPoint& p = m.points[q];
+      const ContactPoint& p = m.points[q];
       const double gap = current_gap(m, p, w.state.step_moves);
       const double vn = m.normal.dot(velocity_at(vb, p.rb) - velocity_at(va, p.ra));
       if (gap < 0.0 && vn < -converged_speed) ++report.unconverged_points;
-      if (-gap / size > report.worst_penetration_ratio) {
-        report.worst_penetration_ratio = -gap / size;
-        report.worst_penetration = -gap;
-        report.worst_penetration_time = time;
-        report.worst_penetration_at = "blocks '" + s.block_names[m.block_a] + "' and '" + s.block_names[m.block_b] + "'";
-      }
+      note_overlap(s, m, -gap, time, w.worst);
     }
     report.contact_points += m.point_count;
   }
+  report_overlap(s, w.worst, report);
 }
 
-
 // Broad and narrow phase: this step's manifolds, carrying over the last step's impulses.
-std::string detect(const BlockSystem& s, SubstepWork& w, CollideSettings& settings, StepProfile& profile) {
+std::string detect(const BlockSystem& s, SubstepWork& w, StepProfile& profile) {
   ScopedTimer timer(profile.find_contacts);
-  settings.extra_reach = w.extra_reach;
-  const auto pairs = find_pairs(s, w.shapes, settings.margin, settings.extra_reach);
-  std::string problem = collide(s, w.shapes, pairs, settings, w.manifolds);
-  settings.first_step = false;
-  return problem;
+  w.detection.settings.extra_reach = w.extra_reach;
+  return detect_contacts(s, w.detection, w.contacts);
 }
 
 // Masses, contact Jacobians and colours for substeps of length h, and the sweep settings.
@@ -115,8 +106,8 @@ SweepSettings prepare_step(const BlockSystem& s, SubstepWork& w, const Simulatio
                            StepProfile& profile) {
   ScopedTimer timer(profile.assemble);
   compute_block_masses(s, w.state.masses);
-  prepare_contacts(s, w.state.masses, h, w.manifolds);
-  w.colours = colour_manifolds(s, w.manifolds);
+  prepare_contacts(s, w.state.masses, h, w.contacts.manifolds);
+  w.colours = colour_manifolds(s, w.contacts.manifolds);
   // The contact spring at an eighth of the substep rate, Box2D's ratio (30 Hz at 240 Hz),
   // without its 30 Hz cap: at 30 Hz a stack of five 1 m blocks sank 1 cm into its
   // contacts; at a quarter of the rate a heavy block on a light one (mass ratio 100)
@@ -137,11 +128,11 @@ void run_one_substep(const BlockSystem& s, SubstepWork& w, const SweepSettings& 
   relax.use_bias = false;
   ScopedTimer timer(profile.solve);
   integrate_velocities(w.state, gravity, sweep.h, w.start_velocity);
-  warm_start(w.manifolds, w.colours, w.state);
-  solve_contacts(w.manifolds, w.colours, sweep, w.state);
+  warm_start(w.contacts.manifolds, w.colours, w.state);
+  solve_contacts(w.contacts.manifolds, w.colours, sweep, w.state);
   integrate_positions(w.state, sweep.h, w.start_velocity, w.moves);
-  solve_contacts(w.manifolds, w.colours, relax, w.state);
-  advance_slip(s, w.moves, w.manifolds);
+  solve_contacts(w.contacts.manifolds, w.colours, relax, w.state);
+  advance_slip(s, w.moves, w.contacts);
 }
 
 // A step of length dt on this step's manifolds: substeps, then the blocks move (once,
@@ -158,25 +149,25 @@ void advance(BlockSystem& s, SubstepWork& w, const SimulationOptions& o, double 
   for (int k = 0; k < o.substeps; ++k) run_one_substep(s, w, sweep, gravity, profile);
   ScopedTimer timer(profile.update);
   move_blocks(s, w.state, measured);
-  update_block_stress(s, w.manifolds, w.deformable, dt, kStressRelaxation, measured);
+  update_block_stress(s, w.contacts.manifolds, w.deformable, dt, kStressRelaxation, measured);
 }
 
 // The normal impulses of the last substep, point by point in manifold order.
-void last_normal_impulses(const std::vector<SubstepManifold>& manifolds, std::vector<double>& out) {
+void last_normal_impulses(const std::vector<ContactManifold>& manifolds, std::vector<double>& out) {
   out.clear();
-  for (const SubstepManifold& m : manifolds)
-    for (int q = 0; q < m.point_count; ++q) out.push_back(m.points[q].normal_impulse);
+  for (const ContactManifold& m : manifolds)
+    for (int q = 0; q < m.point_count; ++q) out.push_back(m.points[q].impulse.normal);
 }
 
 // Largest change of any point's normal impulse over the step, relative to the largest:
 // `before` holds the impulses each point carried into the step (zero for a new point).
-double impulse_change(const std::vector<SubstepManifold>& manifolds, const std::vector<double>& before) {
+double impulse_change(const std::vector<ContactManifold>& manifolds, const std::vector<double>& before) {
   double largest = 0.0, change = 0.0;
   size_t i = 0;
-  for (const SubstepManifold& m : manifolds)
+  for (const ContactManifold& m : manifolds)
     for (int q = 0; q < m.point_count; ++q, ++i) {
-      largest = std::max(largest, std::abs(m.points[q].normal_impulse));
-      change = std::max(change, std::abs(m.points[q].normal_impulse - before[i]));
+      largest = std::max(largest, std::abs(m.points[q].impulse.normal));
+      change = std::max(change, std::abs(m.points[q].impulse.normal - before[i]));
     }
   return largest > 0.0 ? change / largest : 0.0;
 }
@@ -187,13 +178,14 @@ double impulse_change(const std::vector<SubstepManifold>& manifolds, const std::
 // kQuietStartTolerance of the largest. Blocks in flight stay exactly as given; the
 // measurement points' origins move with the blocks, and no slip is counted: the slide
 // starts from rest, not with a bounce.
-std::string quiet_start(BlockSystem& s, SubstepWork& w, const SimulationOptions& o, double dt,
-                        CollideSettings& settings, const Vec2& gravity, StepProfile& profile) {
+std::string quiet_start(BlockSystem& s, SubstepWork& w, const SimulationOptions& o, double dt, const Vec2& gravity,
+                        StepProfile& profile) {
+  CollideSettings& settings = w.detection.settings;
   ScopedTimer timer(profile.settle);
   StepProfile ignored;
-  if (std::string problem = detect(s, w, settings, ignored); !problem.empty()) return problem;
+  if (std::string problem = detect(s, w, ignored); !problem.empty()) return problem;
   std::vector<char> touching(s.blocks.size(), 0);
-  for (const SubstepManifold& m : w.manifolds)
+  for (const ContactManifold& m : w.contacts.manifolds)
     for (int q = 0; q < m.point_count; ++q)
       if (m.points[q].separation <= settings.linear_slop) touching[m.block_a] = touching[m.block_b] = 1;
   std::vector<Vec6> initial(s.blocks.size());
@@ -205,19 +197,18 @@ std::string quiet_start(BlockSystem& s, SubstepWork& w, const SimulationOptions&
   }
   std::vector<double> before;
   for (int k = 0; k < kQuietStartSteps; ++k) {
-    if (k > 0) detect(s, w, settings, ignored);
-    last_normal_impulses(w.manifolds, before);
+    if (k > 0) detect(s, w, ignored);
+    last_normal_impulses(w.contacts.manifolds, before);
     advance(s, w, o, dt, settings.linear_slop, gravity, false, ignored);
     for (Block& b : s.blocks)
       if (!b.fixed) b.velocity.setZero();
-    if (impulse_change(w.manifolds, before) <= kQuietStartTolerance) break;
+    if (impulse_change(w.contacts.manifolds, before) <= kQuietStartTolerance) break;
   }
   for (size_t b = 0; b < s.blocks.size(); ++b) {
     s.blocks[b].fixed = was_fixed[b];
     s.blocks[b].velocity = initial[b];
   }
-  for (SubstepManifold& m : w.manifolds)
-    for (int q = 0; q < m.point_count; ++q) m.points[q].slip = m.points[q].last_slip = 0.0;
+  for (SlipHistory& h : w.contacts.histories) h.slip = h.last_slip = 0.0;
   settings.first_step = true;  // bonds form between the blocks touching once settled
   return {};
 }
@@ -256,7 +247,7 @@ void speculative_reach(const BlockSystem& s, SubstepWork& w, double dt, double g
 // Which blocks have a contact point within `margin` (the scene's margin, not the widened one).
 void mark_near(const SubstepWork& w, double margin, std::vector<char>& near) {
   std::fill(near.begin(), near.end(), 0);
-  for (const SubstepManifold& m : w.manifolds)
+  for (const ContactManifold& m : w.contacts.manifolds)
     for (int q = 0; q < m.point_count; ++q)
       if (m.points[q].separation < margin) near[m.block_a] = near[m.block_b] = 1;
 }
@@ -279,7 +270,7 @@ void run_substep(const Scene& scene, BlockSystem& s, RunRecorder& recorder, Simu
   StepProfile& profile = summary.profile;
   RunCounters& run = summary.run;
   SubstepWork w;
-  if (const std::string bad = build_shapes(s, w.shapes); !bad.empty()) {
+  if (const std::string bad = prepare_detection(s, w.detection); !bad.empty()) {
     summary.status = RunStatus::InvalidScene;
     summary.message = "block '" + bad + "': its polygon could not be split into convex pieces for contact";
     return;
@@ -294,13 +285,14 @@ void run_substep(const Scene& scene, BlockSystem& s, RunRecorder& recorder, Simu
   w.extra_reach.assign(n, 0.0);
   for (const Material& m : scene.materials) w.deformable.push_back(!(m.rigid || o.rigid_blocks));
   const double max_move = o.max_displacement_ratio * s.half_model_size;
-  CollideSettings settings;
+  CollideSettings& settings = w.detection.settings;
   settings.margin = o.search_distance_factor * max_move;
   settings.linear_slop = kSlopRatio * max_move;
   settings.first_step = true;
+  settings.gravity = scene.gravity;
   report.substeps = o.substeps;
   double time = 0.0;
-  if (std::string problem = quiet_start(s, w, o, scene.max_step, settings, scene.gravity, profile); !problem.empty()) {
+  if (std::string problem = quiet_start(s, w, o, scene.max_step, scene.gravity, profile); !problem.empty()) {
     summary.status = RunStatus::InvalidScene;
     summary.message = "t = 0: " + problem;
     return;
@@ -325,7 +317,7 @@ void run_substep(const Scene& scene, BlockSystem& s, RunRecorder& recorder, Simu
     double landing = -1.0;
     const double dt = recorder.fit_step(time, step, &landing);
     speculative_reach(s, w, dt, scene.gravity.norm(), max_move);
-    if (std::string problem = detect(s, w, settings, profile); !problem.empty()) {
+    if (std::string problem = detect(s, w, profile); !problem.empty()) {
       summary.status = RunStatus::InvalidScene;
       std::ostringstream out;
       out << "t = " << time << " s, step " << run.steps + 1 << ": " << problem;

@@ -1,9 +1,11 @@
 #include "forward/substep/solve_contacts.hpp"
-#include "forward/substep/parallel.hpp"
+#include "forward/parallel.hpp"
 
 #include <algorithm>
 #include <cmath>
 
+#include "forward/contact/contact_law.hpp"
+#include "forward/contact/slip_history.hpp"
 #include "forward/substep/prepare_contacts.hpp"
 
 namespace ddafit {
@@ -26,7 +28,7 @@ void for_each_coloured(const std::vector<std::vector<int>>& colours, Body&& body
 }
 
 // Applies impulse P (a vector) at the point: -P on block a, +P on block b.
-inline void apply(Vec3& va, Vec3& vb, const BlockMass& ma, const BlockMass& mb, const SubstepPoint& p,
+inline void apply(Vec3& va, Vec3& vb, const BlockMass& ma, const BlockMass& mb, const ContactPoint& p,
                   const Vec2& impulse) {
   va[0] -= ma.inverse_mass * impulse.x();
   va[1] -= ma.inverse_mass * impulse.y();
@@ -46,31 +48,31 @@ ContactSoftness make_softness(double hertz, double zeta, double h) {
   return {omega / a1, a2 / (1.0 + a2)};
 }
 
-void warm_start(const std::vector<SubstepManifold>& manifolds, const std::vector<std::vector<int>>& colours,
+void warm_start(const std::vector<ContactManifold>& manifolds, const std::vector<std::vector<int>>& colours,
                 SweepState& st) {
   for_each_coloured(colours, [&](int k) {
-    const SubstepManifold& m = manifolds[k];
+    const ContactManifold& m = manifolds[k];
     Vec3& va = st.velocity[m.block_a];
     Vec3& vb = st.velocity[m.block_b];
     for (int q = 0; q < m.point_count; ++q) {
-      const SubstepPoint& p = m.points[q];
+      const ContactPoint& p = m.points[q];
       apply(va, vb, st.masses[m.block_a], st.masses[m.block_b], p,
-            p.normal_impulse * m.normal + p.tangent_impulse * m.tangent);
+            p.impulse.normal * m.normal + p.impulse.tangent * m.tangent);
     }
   });
 }
 
-void solve_contacts(std::vector<SubstepManifold>& manifolds, const std::vector<std::vector<int>>& colours,
+void solve_contacts(std::vector<ContactManifold>& manifolds, const std::vector<std::vector<int>>& colours,
                     const SweepSettings& settings, SweepState& st) {
   const double inv_h = 1.0 / settings.h;
   for_each_coloured(colours, [&](int k) {
-    SubstepManifold& m = manifolds[k];
+    ContactManifold& m = manifolds[k];
     Vec3& va = st.velocity[m.block_a];
     Vec3& vb = st.velocity[m.block_b];
     const BlockMass& ma = st.masses[m.block_a];
     const BlockMass& mb = st.masses[m.block_b];
     for (int q = 0; q < m.point_count; ++q) {
-      SubstepPoint& p = m.points[q];
+      ContactPoint& p = m.points[q];
       // Normal: the gap now, from the step's start and the blocks' moves since.
       const double gap = current_gap(m, p, st.step_moves);
       // The push-out of an overlap follows the soft spring (bias rate and mass scale), but
@@ -87,49 +89,47 @@ void solve_contacts(std::vector<SubstepManifold>& manifolds, const std::vector<s
         mass_scale = settings.softness.mass_scale;
       }
       const double vn = m.normal.dot(velocity_at(vb, p.rb) - velocity_at(va, p.ra));
-      const double change = -p.normal_mass * mass_scale * (vn + bias);
-      // Contact law: compression only, unless a bond holds tension (forward/contact_law.hpp).
-      const double total = std::max(p.normal_impulse + change, -p.tension_impulse);
-      apply(va, vb, ma, mb, p, (total - p.normal_impulse) * m.normal);
-      p.normal_impulse = total;
+      const double change = -p.impulse.normal_mass * mass_scale * (vn + bias);
+      // Contact law: compression only, unless a bond holds tension (tension cut-off).
+      const double total = std::max(p.impulse.normal + change, -p.impulse.tension);
+      apply(va, vb, ma, mb, p, (total - p.impulse.normal) * m.normal);
+      p.impulse.normal = total;
 
-      // Friction: Coulomb's cap mu N (seed Eq. 2-3 for mu) plus cohesion while bonded.
-      const double cap = p.friction * std::max(p.normal_impulse, 0.0) + p.cohesion_impulse;
+      // Friction: the Mohr-Coulomb cap, mu N (seed Eq. 2-3 for mu) plus cohesion while bonded.
+      const double cap = coulomb_cap(m.friction, p.impulse.normal, p.impulse.cohesion);
       const double vt = m.tangent.dot(velocity_at(vb, p.rb) - velocity_at(va, p.ra));
-      const double tangent = std::clamp(p.tangent_impulse - p.tangent_mass * vt, -cap, cap);
-      apply(va, vb, ma, mb, p, (tangent - p.tangent_impulse) * m.tangent);
-      p.tangent_impulse = tangent;
+      const double tangent = std::clamp(p.impulse.tangent - p.impulse.tangent_mass * vt, -cap, cap);
+      apply(va, vb, ma, mb, p, (tangent - p.impulse.tangent) * m.tangent);
+      p.impulse.tangent = tangent;
     }
   });
 }
 
-void advance_slip(const BlockSystem& s, const std::vector<Vec3>& moves, std::vector<SubstepManifold>& manifolds) {
+void advance_slip(const BlockSystem& s, const std::vector<Vec3>& moves, ContactSet& contacts) {
+  std::vector<ContactManifold>& manifolds = contacts.manifolds;
   const long n = static_cast<long>(manifolds.size());
 #pragma omp parallel for schedule(static) if (n >= kParallelMinimum)
   for (long k = 0; k < n; ++k) {
-    SubstepManifold& m = manifolds[k];
+    ContactManifold& m = manifolds[k];
     for (int q = 0; q < m.point_count; ++q) {
-      SubstepPoint& p = m.points[q];
-      p.step_normal_impulse += p.normal_impulse;
-      p.step_tangent_impulse += p.tangent_impulse;
-      if (p.normal_impulse <= -0.999 * p.tension_impulse) {
+      ContactPoint& p = m.points[q];
+      p.impulse.step_normal += p.impulse.normal;
+      p.impulse.step_tangent += p.impulse.tangent;
+      if (p.impulse.normal <= -0.999 * p.impulse.tension) {
         // Open (or torn at its tensile strength): no slip, and the bond is gone.
-        p.last_slip = 0.0;
-        p.bonded = false;
-        p.cohesion_impulse = p.tension_impulse = 0.0;
+        p.slip = 0.0;
+        break_bond(p);
+        p.impulse.cohesion = p.impulse.tension = 0.0;
         continue;
       }
-      p.last_slip = std::abs(m.tangent.dot(velocity_at(moves[m.block_b], p.rb) - velocity_at(moves[m.block_a], p.ra)));
-      const double cap = p.friction * std::max(p.normal_impulse, 0.0) + p.cohesion_impulse;
-      if (p.bonded && std::abs(p.tangent_impulse) >= 0.999 * cap) {
-        p.bonded = false;  // cohesion and tension are lost once the contact slides
-        p.cohesion_impulse = p.tension_impulse = 0.0;
+      p.slip = std::abs(m.tangent.dot(velocity_at(moves[m.block_b], p.rb) - velocity_at(moves[m.block_a], p.ra)));
+      if (p.bonded && std::abs(p.impulse.tangent) >= 0.999 * coulomb_cap(m.friction, p.impulse.normal, p.impulse.cohesion)) {
+        break_bond(p);  // sliding
+        p.impulse.cohesion = p.impulse.tension = 0.0;
       }
-      if (p.slip >= p.critical_distance && p.last_slip == 0.0) continue;
-      p.slip += p.last_slip;  // seed Eq. 2: d accumulates while the point touches
-      if (p.slip < p.critical_distance + p.last_slip) update_friction(s, m, p);
     }
   }
+  advance_histories(s, contacts);
 }
 
 }  // namespace ddafit

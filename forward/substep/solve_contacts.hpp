@@ -39,18 +39,19 @@ struct SweepState {
   std::vector<BlockMass> masses;
 };
 
-void warm_start(const std::vector<SubstepManifold>& manifolds, const std::vector<std::vector<int>>& colours,
+void warm_start(const std::vector<ContactManifold>& manifolds, const std::vector<std::vector<int>>& colours,
                 SweepState& state);
-void solve_contacts(std::vector<SubstepManifold>& manifolds, const std::vector<std::vector<int>>& colours,
+void solve_contacts(std::vector<ContactManifold>& manifolds, const std::vector<std::vector<int>>& colours,
                     const SweepSettings& settings, SweepState& state);
 
-// After a substep moved the blocks by `moves`: the slip of each touching point (seed Eq. 2)
-// and, where it changed, its friction coefficient; a bond is lost once its point slides or opens.
-void advance_slip(const BlockSystem& system, const std::vector<Vec3>& moves, std::vector<SubstepManifold>& manifolds);
+// After a substep moved the blocks by `moves`: the slip of each closed point, gathered into
+// its face's slip history (seed Eq. 2, forward/contact/slip_history.hpp), and the friction
+// that follows; a bond is lost once its point slides or opens (contact_law.hpp).
+void advance_slip(const BlockSystem& system, const std::vector<Vec3>& moves, ContactSet& contacts);
 
 // The gap of a point now: its gap at the start of the step plus the relative move of the
 // two blocks at the point along the normal.
-inline double current_gap(const SubstepManifold& m, const SubstepPoint& p, const std::vector<Vec3>& step_moves) {
+inline double current_gap(const ContactManifold& m, const ContactPoint& p, const std::vector<Vec3>& step_moves) {
   return p.separation + m.normal.dot(velocity_at(step_moves[m.block_b], p.rb) - velocity_at(step_moves[m.block_a], p.ra));
 }
 

@@ -1,5 +1,5 @@
 // Geometry of the substep contact solver: the convex decomposition of blocks (contact
-// manifolds between pieces: test_substep_manifold.cpp).
+// manifolds between pieces: test_contact_manifold.cpp).
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "forward/geometry.hpp"
-#include "forward/substep/convex_pieces.hpp"
+#include "forward/contact/convex_pieces.hpp"
 
 namespace ddafit {
 namespace {

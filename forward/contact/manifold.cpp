@@ -1,4 +1,4 @@
-#include "forward/substep/manifold.hpp"
+#include "forward/contact/manifold.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -162,13 +162,91 @@ Ends closest_ends(const Vec2& p1, const Vec2& q1, const Vec2& p2, const Vec2& q2
   return {};
 }
 
+// The face contact of reference face `rf` of `ref` against incident face `incf` of `inc`:
+// the incident face cut to the slab between the lines through the reference face's ends
+// along the normal. A cut end is the reference polygon's corner pressing on the incident
+// face; an uncut end is the incident polygon's corner. An incident face wholly beside the
+// slab gives its end nearest the slab (overlapping corners, or round-off). Points deeper
+// than `max_depth` are dropped when `limit_depth` (see "Solid edges" in manifold.hpp).
+void clip_face_contact(const Shape& ref, const Face& rf, const Shape& inc, const Face& incf, int ref_owner,
+                       const ManifoldSettings& settings, bool limit_depth, Manifold& m) {
+  struct Candidate {
+    Vec2 at;
+    int owner, vertex, other;
+  };
+  const int inc_owner = 1 - ref_owner;
+  const Vec2 v11 = ref.at(rf.first), v12 = ref.at(rf.last);
+  const double ref_length = (v12 - v11).norm();
+  const Vec2 tangent = (v12 - v11) / ref_length, normal = outward(tangent);
+  const Vec2 v21 = inc.at(incf.first), v22 = inc.at(incf.last);
+  Candidate c[2];
+  int count = 0;
+  const double u21 = (v21 - v11).dot(tangent), u22 = (v22 - v11).dot(tangent);
+  const Candidate inc_first{v21, inc_owner, incf.first, rf.first};
+  const Candidate inc_last{v22, inc_owner, incf.last, rf.first};
+  if (u21 <= 0.0 || u22 >= ref_length) {
+    c[count++] = u21 <= 0.0 ? inc_first : inc_last;
+  } else {
+    // The incident face runs against the tangent: v22 is the end near v11.
+    if (u22 < 0.0) {
+      c[count++] = {v22 + (-u22 / (u21 - u22)) * (v21 - v22), ref_owner, rf.first, incf.first};
+    } else {
+      c[count++] = inc_last;
+    }
+    if (u21 > ref_length) {
+      c[count++] = {v21 + ((u21 - ref_length) / (u21 - u22)) * (v22 - v21), ref_owner, rf.last, incf.first};
+    } else {
+      c[count++] = inc_first;
+    }
+  }
+  const double max_depth = settings.max_depth < 0.0 ? settings.max_distance : settings.max_depth;
+  for (int k = 0; k < count; ++k) {
+    const double separation = (c[k].at - v11).dot(normal);
+    // Deeper than the margin is not a contact a step can make: with cuts (solid edges
+    // only as reference faces) it is a corner read across a cut, inside the block.
+    if (!(separation < settings.max_distance) || (limit_depth && !(separation > -max_depth))) continue;
+    m.points[m.point_count++] = {ref.origin + c[k].at - 0.5 * separation * normal, separation,
+                                 manifold_id(c[k].owner, c[k].vertex, c[k].other, false), c[k].owner, c[k].vertex};
+  }
+  m.normal = ref_owner == 1 ? Vec2(-normal) : normal;  // always from a to b
+  m.reference = ref_owner;
+  m.reference_face = rf.first;
+  m.incident_face = incf.first;
+}
+
+// Flush neighbours (manifold.hpp): a solid face T of p whose line q lies against, within
+// eta on either side, while q lies wholly beside T along it.
+bool flush_neighbours(const Shape& p, const Shape& q, std::span<const char> solid, double eta, double tiny,
+                      double flat) {
+  for (int i = 0; i < p.n; ++i) {
+    if (!solid.empty() && !solid[static_cast<size_t>(i)]) continue;
+    const Vec2 p0 = p.at(i), edge = p.at(i + 1) - p0;
+    const double length = edge.norm();
+    if (!(length > tiny)) continue;
+    const Vec2 normal = outward(edge) / length, tangent = edge / length;
+    double gap = kInfinity;
+    for (int k = 0; k < q.n; ++k) gap = std::min(gap, normal.dot(q.at(k) - p0));
+    if (std::abs(gap) > eta) continue;
+    // T's extent: the edge grown over collinear neighbours, along the tangent from p0.
+    const Face f = grow_face(p, i, flat);
+    const double from = (p.at(f.first) - p0).dot(tangent), to = (p.at(f.last) - p0).dot(tangent);
+    double lo = kInfinity, hi = -kInfinity;
+    for (int k = 0; k < q.n; ++k) {
+      const double u = (q.at(k) - p0).dot(tangent);
+      lo = std::min(lo, u);
+      hi = std::max(hi, u);
+    }
+    if (hi <= from || lo >= to) return true;
+  }
+  return false;
+}
+
 }  // namespace
 
-Manifold collide_polygons(std::span<const Vec2> a, std::span<const Vec2> b, double max_distance,
-                          double linear_slop, std::span<const char> a_solid, std::span<const char> b_solid,
-                          double max_depth, bool flip_for_cuts) {
+Manifold collide_polygons(std::span<const Vec2> a, std::span<const Vec2> b, const ManifoldSettings& settings,
+                          std::span<const char> a_solid, std::span<const char> b_solid) {
   Manifold m;
-  if (max_depth < 0.0) max_depth = max_distance;
+  const double max_distance = settings.max_distance, linear_slop = settings.linear_slop;
   if (a.size() < 3 || b.size() < 3) return m;
   const Vec2 origin = a[0];
   const Shape sa{a, origin, static_cast<int>(a.size())}, sb{b, origin, static_cast<int>(b.size())};
@@ -195,10 +273,15 @@ Manifold collide_polygons(std::span<const Vec2> a, std::span<const Vec2> b, doub
   // 0.62 m "deep" in the neighbouring piece (no solid axis separated them) and stopped
   // Vajont sections VI, IX and X with overlaps of 25 % of a block that did not exist.
   if (has_cuts && (cut_separates(sa, sb, tiny, a_solid) || cut_separates(sb, sa, tiny, b_solid))) return m;
+  const double flat = 1e-3 * linear_slop;
+
+  // Flush neighbours: two polygons along one surface line touch only at a corner sliver.
+  const double eta = settings.flush_tolerance;
+  if (eta > 0.0 && (flush_neighbours(sa, sb, a_solid, eta, tiny, flat) || flush_neighbours(sb, sa, b_solid, eta, tiny, flat)))
+    return m;
 
   // Reference polygon: a unless b's axis is clearly better, so that two equally good
   // axes do not swap the reference (and the point ids) from one call to the next.
-  const double flat = 1e-3 * linear_slop;
   bool flip = axis_a.edge < 0 || (axis_b.edge >= 0 && axis_b.separation > axis_a.separation + 0.1 * linear_slop);
   const auto incident_for = [&](bool f) {
     return incident_edge(f ? sa : sb, f ? a_solid : b_solid,
@@ -213,7 +296,7 @@ Manifold collide_polygons(std::span<const Vec2> a, std::span<const Vec2> b, doub
   // Without this, a toe block on Vajont section VII whose corner sat in the valley corner
   // read the opposite bank's face as turned away from it, got no point, and went into the
   // bank (the first axis was its own face; the bank piece's side facing it was a cut).
-  if (flip_for_cuts && incident.facing > 0.0) {
+  if (settings.flip_for_cuts && incident.facing > 0.0) {
     if ((flip ? axis_a.edge : axis_b.edge) < 0) return m;
     flip = !flip;
     incident = incident_for(flip);
@@ -223,18 +306,12 @@ Manifold collide_polygons(std::span<const Vec2> a, std::span<const Vec2> b, doub
   const Shape& inc = flip ? sa : sb;
   const int ref_owner = flip ? 1 : 0, inc_owner = 1 - ref_owner;
   const Face rf = grow_face(ref, flip ? axis_b.edge : axis_a.edge, flat);
-  const Vec2 v11 = ref.at(rf.first), v12 = ref.at(rf.last);
-  const double ref_length = (v12 - v11).norm();
-  const Vec2 tangent = (v12 - v11) / ref_length, normal = outward(tangent);
-  const int inc_edge = incident.edge;
-  const Face incf = grow_face(inc, inc_edge, flat);
-  const Vec2 v21 = inc.at(incf.first), v22 = inc.at(incf.last);
-  m.normal = flip ? Vec2(-normal) : normal;  // always from a to b
+  const Face incf = grow_face(inc, incident.edge, flat);
 
   // Apart, corner facing corner: one point, normal along the line joining the corners.
   // The gap exceeds 0.1 x linear_slop here, so that line has a well-defined direction.
   if (std::max(axis_a.separation, axis_b.separation) > 0.1 * linear_slop) {
-    const Ends ends = closest_ends(v11, v12, v21, v22);
+    const Ends ends = closest_ends(ref.at(rf.first), ref.at(rf.last), inc.at(incf.first), inc.at(incf.last));
     if (ends.on1 >= 0) {
       const int ref_vertex = ends.on1 == 1 ? rf.last : rf.first;
       const int inc_vertex = ends.on2 == 1 ? incf.last : incf.first;
@@ -245,49 +322,13 @@ Manifold collide_polygons(std::span<const Vec2> a, std::span<const Vec2> b, doub
       m.points[0] = {origin + corner + 0.5 * d, distance,
                      manifold_id(inc_owner, inc_vertex, ref_vertex, true), inc_owner, inc_vertex};
       m.point_count = 1;
+      m.reference = ref_owner;
+      m.reference_face = rf.first;
+      m.incident_face = incf.first;
       return m;
     }
   }
-
-  // Face contact: cut the incident face to the slab between the lines through the
-  // reference face's ends along the normal. A cut end is the reference polygon's corner
-  // pressing on the incident face; an uncut end is the incident polygon's corner.
-  struct Candidate {
-    Vec2 at;
-    int owner, vertex, other;
-  };
-  Candidate c[2];
-  int count = 0;
-  const double u21 = (v21 - v11).dot(tangent), u22 = (v22 - v11).dot(tangent);
-  const Candidate inc_first{v21, inc_owner, incf.first, rf.first};
-  const Candidate inc_last{v22, inc_owner, incf.last, rf.first};
-  if (u21 <= 0.0 || u22 >= ref_length) {
-    // The whole incident face lies beside the slab (overlapping corners, or round-off):
-    // only its end nearest the slab can be the contact.
-    c[count++] = u21 <= 0.0 ? inc_first : inc_last;
-  } else {
-    // The incident face runs against the tangent: v22 is the end near v11.
-    if (u22 < 0.0) {
-      c[count++] = {v22 + (-u22 / (u21 - u22)) * (v21 - v22), ref_owner, rf.first, incf.first};
-    } else {
-      c[count++] = inc_last;
-    }
-    if (u21 > ref_length) {
-      c[count++] = {v21 + ((u21 - ref_length) / (u21 - u22)) * (v22 - v21), ref_owner, rf.last,
-                    incf.first};
-    } else {
-      c[count++] = inc_first;
-    }
-  }
-  for (int k = 0; k < count; ++k) {
-    const double separation = (c[k].at - v11).dot(normal);
-    // Deeper than the margin is not a contact a step can make: with cuts (solid edges
-    // only as reference faces) it is a corner read across a cut, inside the block.
-    if (!(separation < max_distance) || (has_cuts && !(separation > -max_depth))) continue;
-    m.points[m.point_count++] = {origin + c[k].at - 0.5 * separation * normal, separation,
-                                 manifold_id(c[k].owner, c[k].vertex, c[k].other, false),
-                                 c[k].owner, c[k].vertex};
-  }
+  clip_face_contact(ref, rf, inc, incf, ref_owner, settings, has_cuts, m);
   return m;
 }
 

@@ -1,13 +1,13 @@
-#include "forward/substep/find_pairs.hpp"
+#include "forward/contact/find_pairs.hpp"
 
 #include <algorithm>
 #include <span>
 
-#include "forward/substep/convex_pieces.hpp"
+#include "forward/contact/convex_pieces.hpp"
 
 namespace ddafit {
 
-std::string build_shapes(const BlockSystem& s, SubstepShapes& shapes) {
+std::string build_shapes(const BlockSystem& s, ContactShapes& shapes) {
   shapes = {};
   std::vector<Vec2> polygon;
   for (int b = 0; b < static_cast<int>(s.blocks.size()); ++b) {
@@ -29,7 +29,7 @@ std::string build_shapes(const BlockSystem& s, SubstepShapes& shapes) {
   return {};
 }
 
-std::vector<std::pair<int, int>> find_pairs(const BlockSystem& s, const SubstepShapes& shapes, double margin,
+std::vector<std::pair<int, int>> find_pairs(const BlockSystem& s, const ContactShapes& shapes, double margin,
                                             std::span<const double> extra_reach) {
   struct Box {
     double lo_x, hi_x, lo_y, hi_y;

@@ -1,4 +1,4 @@
-#include "forward/substep/convex_pieces.hpp"
+#include "forward/contact/convex_pieces.hpp"
 
 #include <algorithm>
 #include <cmath>

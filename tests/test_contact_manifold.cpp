@@ -1,5 +1,5 @@
-// Geometry of the substep contact solver: the contact manifold between two convex pieces
-// (the convex decomposition: test_substep_geometry.cpp).
+// Geometry of the contact stage both solvers share: the contact manifold between two convex pieces
+// (the convex decomposition: test_convex_pieces.cpp).
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "forward/geometry.hpp"
-#include "forward/substep/manifold.hpp"
+#include "forward/contact/manifold.hpp"
 
 namespace ddafit {
 namespace {
@@ -34,8 +34,16 @@ std::vector<Vec2> square(const Vec2& c, double h, double degrees) {
 constexpr double kLength = 1e-9;
 constexpr double kMaxDistance = 0.01, kSlop = 1e-4;
 
+ManifoldSettings settings(double max_distance, double slop, double max_depth = -1.0) {
+  ManifoldSettings m;
+  m.max_distance = max_distance;
+  m.linear_slop = slop;
+  m.max_depth = max_depth;
+  return m;
+}
+
 Manifold collide(const std::vector<Vec2>& a, const std::vector<Vec2>& b) {
-  return collide_polygons(a, b, kMaxDistance, kSlop);
+  return collide_polygons(a, b, settings(kMaxDistance, kSlop));
 }
 
 // Signed distance of q from the line of the edge of p whose outward normal is n, or NaN.
@@ -334,9 +342,9 @@ TEST(SubstepManifold, APolygonBeyondACutHasNoContactWithThePiece) {
   const auto diamond = square(Vec2(0.5, 2.1), std::sqrt(0.5), 45.0);  // corners 1 m from (0.5, 2.1)
   const std::vector<char> top_cut = {1, 1, 0, 1}, all_solid = {1, 1, 1, 1};
   const double margin = 0.5;
-  const Manifold across = collide_polygons(piece, diamond, margin, kSlop, top_cut);
+  const Manifold across = collide_polygons(piece, diamond, settings(margin, kSlop), top_cut);
   EXPECT_EQ(across.point_count, 0);
-  const Manifold face = collide_polygons(piece, diamond, margin, kSlop, all_solid);
+  const Manifold face = collide_polygons(piece, diamond, settings(margin, kSlop), all_solid);
   ASSERT_GE(face.point_count, 1);
   EXPECT_NEAR(face.points[0].separation, 0.1, kLength);
 }
@@ -358,7 +366,7 @@ TEST(SubstepManifold, BlockCornerSetInAValleyCornerKeepsItsContact) {
                                   o + Vec2(100.0, 98.0)};
   const std::vector<char> block_solid(block.size(), 1), bank_solid = {1, 0, 0, 1, 1};  // the bank piece's cuts
   const double margin = 0.625;
-  const Manifold m = collide_polygons(block, bank, margin, 2.5e-4, block_solid, bank_solid, margin);
+  const Manifold m = collide_polygons(block, bank, settings(margin, 2.5e-4, margin), block_solid, bank_solid);
   ASSERT_GE(m.point_count, 1);
   const ManifoldPoint& deepest =
       m.point_count == 2 && m.points[1].separation < m.points[0].separation ? m.points[1] : m.points[0];
@@ -385,7 +393,7 @@ TEST(SubstepManifold, RandomPairsMissNoContact) {
     if (a.size() < 3 || b.size() < 3) continue;
     const bool overlap = polygons_overlap(a, b, 1e-6);
     const double gap = overlap ? 0.0 : gap_between(a, b);
-    const Manifold m = collide_polygons(a, b, margin, kSlop);
+    const Manifold m = collide_polygons(a, b, settings(margin, kSlop));
     SCOPED_TRACE(trial);
     // 0.1 % either side of the margin: the two sides of the comparison see round-off.
     if (overlap || gap < 0.999 * margin) {

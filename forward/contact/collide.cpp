@@ -1,0 +1,177 @@
+#include "forward/contact/collide.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "forward/contact/contact_law.hpp"
+#include "forward/contact/manifold.hpp"
+#include "forward/contact/slip_history.hpp"
+#include "forward/parallel.hpp"
+
+namespace ddafit {
+namespace {
+
+// The largest piece has a few dozen corners (merged Vajont blocks); copies of two pieces'
+// corners live on the stack of the narrow phase.
+constexpr int kMaxCorners = 128;
+
+// Contacts whose normal is within this of horizontal (|n . g| / |g| below it) are side by
+// side: neither block is above the other, and the lower block id overrides.
+constexpr double kSideBySide = 1e-3;
+
+int gather(const BlockSystem& s, const ContactShapes& shapes, int piece, Vec2* out) {
+  const ConvexPiece& p = shapes.pieces[piece];
+  const int n = std::min(p.count, kMaxCorners);
+  for (int k = 0; k < n; ++k) out[k] = s.vertices[shapes.corners[p.first + k]];
+  return n;
+}
+
+// The last step's manifold of the same pair of pieces, if any (both lists are sorted).
+const ContactManifold* previous_of(const std::vector<ContactManifold>& previous, int a, int b) {
+  const auto it = std::lower_bound(previous.begin(), previous.end(), std::make_pair(a, b),
+                                   [](const ContactManifold& m, const std::pair<int, int>& key) {
+                                     return std::make_pair(m.piece_a, m.piece_b) < key;
+                                   });
+  return it != previous.end() && it->piece_a == a && it->piece_b == b ? &*it : nullptr;
+}
+
+// A point whose features touched in the last step carries its state: the substep
+// solver's impulses (warm start), the implicit solver's spring state, and its bond. A new
+// point starts unloaded; the implicit solver takes it as locked where it touches. Either
+// way its spring's state is the state at the start of this step.
+void carry_over(const ContactManifold* old, ContactPoint& p) {
+  const auto start_step = [](SpringState& c) {
+    c.step_state = c.state;
+    c.state_changes = 0;
+  };
+  if (old) {
+    for (int k = 0; k < old->point_count; ++k) {
+      const ContactPoint& o = old->points[k];
+      if (o.id != p.id) continue;
+      p.impulse.normal = o.impulse.normal;
+      p.impulse.tangent = o.impulse.tangent;
+      p.spring = o.spring;
+      p.bonded = o.bonded;
+      p.fresh = false;
+      start_step(p.spring);
+      return;
+    }
+  }
+  p.spring.state = p.separation <= 0.0 ? ContactState::Locked : ContactState::Open;
+  start_step(p.spring);
+}
+
+// Seed Eq. 2's overriding block of a pair: the free one if the other is fixed, else the
+// upper one, else (side by side) the lower id. Its face in the manifold is the face that
+// slides, and its length along the contact sets d_c.
+int overriding_block(const BlockSystem& s, const ContactManifold& m, const Vec2& gravity) {
+  const bool fa = s.blocks[m.block_a].fixed, fb = s.blocks[m.block_b].fixed;
+  if (fa != fb) return fa ? m.block_b : m.block_a;
+  const double g = gravity.norm();
+  const double up = g > 0.0 ? -m.normal.dot(gravity) / g : 0.0;  // > 0: b lies above a
+  if (std::abs(up) <= kSideBySide) return std::min(m.block_a, m.block_b);
+  return up > 0.0 ? m.block_b : m.block_a;
+}
+
+double block_size(const BlockSystem& s, int b) { return std::sqrt(std::abs(s.blocks[b].area)); }
+
+}  // namespace
+
+const char* to_string(ContactState state) {
+  switch (state) {
+    case ContactState::Open: return "open";
+    case ContactState::Sliding: return "sliding";
+    case ContactState::Locked: return "locked";
+  }
+  return "?";
+}
+
+std::string collide(const BlockSystem& s, const ContactShapes& shapes, const std::vector<std::pair<int, int>>& pairs,
+                    const CollideSettings& settings, ContactSet& contacts) {
+  // Pass 1, the geometry of every pair of boxes; pass 2 builds the manifolds of the pairs
+  // that touch, in place (no full manifold per pair of boxes, no copy).
+  const long n = static_cast<long>(pairs.size());
+  std::vector<Manifold> geometry(pairs.size());
+#pragma omp parallel for schedule(static) if (n >= kParallelMinimum)
+  for (long k = 0; k < n; ++k) {
+    const auto [a, b] = pairs[k];
+    const int block_a = shapes.pieces[a].block, block_b = shapes.pieces[b].block;
+    Vec2 corners_a[kMaxCorners], corners_b[kMaxCorners];
+    const int na = gather(s, shapes, a, corners_a);
+    const int nb = gather(s, shapes, b, corners_b);
+    const std::span<const char> solid(shapes.solid);
+    const double reach =
+        settings.extra_reach.empty() ? 0.0 : settings.extra_reach[block_a] + settings.extra_reach[block_b];
+    ManifoldSettings ms;
+    ms.max_distance = settings.margin + reach;
+    ms.linear_slop = settings.linear_slop;
+    ms.max_depth = settings.margin;
+    ms.flip_for_cuts = s.blocks[block_a].fixed || s.blocks[block_b].fixed;
+    const double size = std::min(s.blocks[block_a].fixed ? 1e300 : block_size(s, block_a),
+                                 s.blocks[block_b].fixed ? 1e300 : block_size(s, block_b));
+    ms.flush_tolerance = settings.flush_ratio * size;
+    geometry[k] = collide_polygons(std::span<const Vec2>(corners_a, na), std::span<const Vec2>(corners_b, nb), ms,
+                                   solid.subspan(shapes.pieces[a].first, na), solid.subspan(shapes.pieces[b].first, nb));
+  }
+  std::vector<int> touching;
+  for (long k = 0; k < n; ++k)
+    if (geometry[k].point_count > 0) touching.push_back(static_cast<int>(k));
+
+  const std::vector<ContactManifold> previous = std::move(contacts.manifolds);
+  std::vector<ContactManifold>& manifolds = contacts.manifolds;
+  manifolds.assign(touching.size(), ContactManifold{});
+  const long t = static_cast<long>(touching.size());
+#pragma omp parallel for schedule(static) if (t >= kParallelMinimum)
+  for (long j = 0; j < t; ++j) {
+    const int k = touching[j];
+    const auto [a, b] = pairs[k];
+    const Manifold& m = geometry[k];
+    ContactManifold& out = manifolds[j];
+    out.piece_a = a;
+    out.piece_b = b;
+    out.block_a = shapes.pieces[a].block;
+    out.block_b = shapes.pieces[b].block;
+    out.interface = s.interface_between(out.block_a, out.block_b);
+    out.normal = m.normal;
+    out.tangent = Vec2(m.normal.y(), -m.normal.x());
+    out.point_count = m.point_count;
+    const ContactManifold* old = previous_of(previous, a, b);
+    for (int q = 0; q < m.point_count; ++q) {
+      const ManifoldPoint& mp = m.points[q];
+      ContactPoint& p = out.points[q];
+      p.id = mp.id;
+      p.anchor = mp.point;
+      p.separation = mp.separation;
+      p.ra = mp.point - s.blocks[out.block_a].centroid;
+      p.rb = mp.point - s.blocks[out.block_b].centroid;
+      p.owner = shapes.corners[shapes.pieces[mp.owner == 0 ? a : b].first + mp.vertex];
+      carry_over(old, p);
+    }
+    // The sliding face: the overriding block's face in this manifold, through this interface.
+    out.overriding_block = overriding_block(s, out, settings.gravity);
+    const bool on_a = out.overriding_block == out.block_a;
+    const int face = (m.reference == 0) == on_a ? m.reference_face : m.incident_face;
+    out.face_key = slip_history_key(shapes.corners[shapes.pieces[on_a ? a : b].first + face], out.interface);
+    // Cohesion and tension act along the face the two points share, half each; a single
+    // point (corner on corner, corner on face) has no bonded length.
+    const double shared = m.point_count == 2 ? (m.points[0].point - m.points[1].point).norm() : 0.0;
+    for (int q = 0; q < m.point_count; ++q) {
+      ContactPoint& p = out.points[q];
+      p.bond_length = 0.5 * shared;
+      if (settings.first_step && out.interface >= 0)
+        p.bonded = forms_bond(s.interfaces[out.interface], p.separation, settings.linear_slop);
+    }
+  }
+  assign_histories(s, contacts);
+  std::string problem;
+  for (const ContactManifold& m : manifolds) {
+    if (m.interface >= 0) continue;
+    problem = "blocks '" + s.block_names[m.block_a] + "' and '" + s.block_names[m.block_b] + "' (groups '" +
+              s.group_names[s.blocks[m.block_a].group] + "', '" + s.group_names[s.blocks[m.block_b].group] +
+              "') touch but no interface is defined for that pair: add a contacts entry or default_interface";
+    break;
+  }
+  return problem;
+}
+
+}  // namespace ddafit

@@ -1,0 +1,46 @@
+// Stage 2 of a step, both solvers: the narrow phase. One manifold per touching pair of
+// convex pieces: one normal (the separating axis of the reference face, or the flush face),
+// at most two points, a single point with the normal joining the corners when two corners
+// meet (forward/contact/manifold.hpp). Points keep their state from the last step by
+// feature id; each manifold is given the slip history of its overriding face.
+#pragma once
+
+#include <span>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "forward/block_system.hpp"
+#include "forward/contact/contact_types.hpp"
+
+namespace ddafit {
+
+// The flush tolerance eta of manifold.hpp as a fraction of the smaller free block's size
+// (the square root of its area). A step between two faces smaller than this is smoothed
+// over; a larger one is a step. Twice the largest overlap the solvers allow (1 % of the
+// smaller block: an overlap that deep must not turn a flush joint into a step), and below
+// the 5 % of a 5 cm step under a 1 m block, which must stop a block arriving at 2 m/s
+// (test_joint_crossing.cpp).
+inline constexpr double kFlushRatio = 0.02;
+
+struct CollideSettings {
+  double margin = 0.0;       // m: points are kept while their gap is below this (speculative)
+  // m, per block (empty: none): a block moving further in the step than the margin covers
+  // (a block in flight) widens the margin of its pairs by this much, so it cannot pass
+  // through a neighbour unseen; overlaps deeper than `margin` alone are still not contacts.
+  std::span<const double> extra_reach;
+  double linear_slop = 0.0;  // m: tolerance of the separating-axis choice
+  bool first_step = false;   // bonds (cohesion, tension) form only between blocks touching at t = 0
+  double flush_ratio = kFlushRatio;
+  // Down: of two free blocks, the upper one overrides (seed Eq. 2: its length sets d_c).
+  Vec2 gravity = Vec2(0.0, -9.81);
+};
+
+// Replaces `contacts` (the last step's, manifolds sorted by piece pair, histories by key)
+// with this step's. Returns an empty string, or a description of two touching blocks
+// that have no interface.
+std::string collide(const BlockSystem& system, const ContactShapes& shapes,
+                    const std::vector<std::pair<int, int>>& pairs, const CollideSettings& settings,
+                    ContactSet& contacts);
+
+}  // namespace ddafit

@@ -1,0 +1,77 @@
+// The contact law, written once and called by both solvers (docs/theory.md §3-4): the
+// implicit solver applies it to the forces of its springs (forward/step/check_contacts.cpp,
+// assemble.cpp, update_blocks.cpp), the substep solver to the impulses of a substep
+// (forward/substep/solve_contacts.cpp, prepare_contacts.cpp); the contact stage creates and
+// carries its state (forward/contact/collide.cpp, slip_history.cpp).
+//
+//   tan phi = law(d + Delta d / 2, d_c)           friction at the slip d of the face, predicted
+//                                                 half a (sub)step ahead (friction_law.hpp, seed Eq. 2-3)
+//   d_c = ratio x length of the overriding block  along the contact (seed Eq. 2)
+//   |T| <= tan(phi) max(N, 0) + c l_c             Mohr-Coulomb cap; cohesion while bonded
+//   N >= -T_s l_c                                 tension cut-off (T_s tensile strength) while bonded
+//   d += |slip| while the face touches            seed Eq. 2
+//
+// A bond (cohesion c and tensile strength T_s over the length l_c) exists only between
+// blocks touching at t = 0, and is lost for good once the point slides or opens.
+// Forces are per metre of thickness; the substep solver passes impulses (force x substep).
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+
+#include "forward/contact/contact_types.hpp"
+#include "forward/contact/friction_law.hpp"
+
+namespace ddafit {
+
+// d_c of seed Eq. 2 for an overriding block of `length` along the contact, m.
+inline double critical_distance(const Interface& face, double length) {
+  return face.critical_distance_ratio * length;
+}
+
+// tan(phi) of a face with slip history h, at the middle of the coming (sub)step: the last
+// increment predicts the next to second order, and the (sub)step's own slip would feed
+// back inside the solve (a trial that slips far degrades friction, which lets the next
+// trial slip further).
+inline double friction_coefficient(const Interface& face, const SlipHistory& h) {
+  return friction_law(face, h.slip + 0.5 * h.last_slip, h.critical_distance);
+}
+
+// The cohesive part of the shear strength, c l_c, while bonded (N/m).
+inline double cohesive_strength(const Interface& face, const ContactPoint& p) {
+  return p.bonded ? face.cohesion * p.bond_length : 0.0;
+}
+
+// The largest tensile normal force (>= 0) before the point opens: T_s l_c while bonded.
+inline double tensile_capacity(const Interface& face, const ContactPoint& p) {
+  return p.bonded ? face.tensile_strength * p.bond_length : 0.0;
+}
+
+// Mohr-Coulomb: the largest shear a point carries before it slides, for normal load N
+// (compression > 0), friction coefficient mu and cohesive strength C (in the same measure:
+// forces, or impulses over a substep).
+inline double coulomb_cap(double mu, double normal, double cohesive) {
+  return mu * std::max(normal, 0.0) + cohesive;
+}
+
+// Whether a point touching at t = 0 forms a bond: only where the interface has strength
+// to hold, and only where the blocks touch (separation within the slop).
+inline bool forms_bond(const Interface& face, double separation, double slop) {
+  return separation <= slop && (face.cohesion > 0.0 || face.tensile_strength > 0.0);
+}
+
+// Cohesion and tension are lost for good once the point slides or opens.
+inline void break_bond(ContactPoint& p) { p.bonded = false; }
+
+// Seed Eq. 2: a face's slip grows by the (sub)step's increment, the largest slip of its
+// closed points (they share one face; one face can touch several blocks at once, as a block
+// crossing a joint does, and its slip is not their sum).
+inline void add_slip(SlipHistory& h) {
+  h.slip += h.increment;
+  h.last_slip = h.increment;
+  h.increment = 0.0;
+}
+
+inline void gather_slip(SlipHistory& h, double point_slip) { h.increment = std::max(h.increment, point_slip); }
+
+}  // namespace ddafit

@@ -1,0 +1,116 @@
+// Contact manifold between two convex polygons: the one or two points, with a shared
+// normal, at which both solvers apply non-penetration and friction (docs/theory.md §3).
+// The idea comes from Box2D v3's manifold (separating axis, reference face, clipping) and
+// its smooth chain segments (ghost collisions); the code is our own.
+#pragma once
+
+#include <cstdint>
+#include <span>
+
+#include "forward/scene.hpp"
+
+namespace ddafit {
+
+struct ManifoldPoint {
+  Vec2 point = Vec2::Zero();   // world position: midway between the incident vertex and the reference face
+  double separation = 0.0;     // along the normal, m; negative = penetration
+  std::uint32_t id = 0;        // feature key: equal ids in successive calls mean the same pair of features
+  int owner = -1;              // 0 if the point sits on a vertex of polygon a, 1 if of polygon b
+  int vertex = -1;             // index of that vertex in its polygon
+};
+
+struct Manifold {
+  Vec2 normal = Vec2::Zero();  // unit, pointing from a towards b
+  int point_count = 0;         // 0, 1 or 2
+  ManifoldPoint points[2];
+  // The two faces in contact: the reference face (whose normal is the contact normal) on
+  // polygon `reference` (0 = a, 1 = b) and the incident face on the other, each named by
+  // the index of its first vertex (a face is an edge grown over collinear neighbours).
+  int reference = 0;
+  int reference_face = -1;
+  int incident_face = -1;
+};
+
+// Layout of ManifoldPoint::id. A vertex-face point: bit 30 = owner, bits 15-29 = the
+// owner's vertex, bits 0-14 = first edge of the other polygon's face (the face is that
+// edge plus any collinear edges after it). A vertex-vertex point additionally sets bit 31
+// and stores the other polygon's vertex in bits 0-14. The key does not depend on which
+// polygon was the reference, so it survives the reference flipping between a and b.
+// Polygons are limited to 32768 vertices.
+constexpr std::uint32_t kManifoldIdVertexVertex = 1u << 31;
+constexpr std::uint32_t manifold_id(int owner, int vertex, int other_feature, bool vertex_vertex) {
+  return (vertex_vertex ? kManifoldIdVertexVertex : 0u) | (static_cast<std::uint32_t>(owner) << 30) |
+         (static_cast<std::uint32_t>(vertex) << 15) | static_cast<std::uint32_t>(other_feature);
+}
+
+struct ManifoldSettings {
+  // m, > 0: points are kept while their separation is below this (the speculative margin).
+  double max_distance = 0.0;
+  // m, small (e.g. 1e-4 x block size): tolerance of the separating-axis comparisons; b
+  // becomes the reference polygon only when its axis separates by more than a's by
+  // 0.1 x linear_slop (a bias against flipping between equal axes).
+  double linear_slop = 0.0;
+  // m: where a piece has cuts, points are kept only while their overlap is below this
+  // (< 0: max_distance); see "Solid edges".
+  double max_depth = -1.0;
+  // See "Solid edges": let the other polygon's face be the reference when the incident
+  // piece turns only cuts towards the reference face.
+  bool flip_for_cuts = true;
+  // m, >= 0: the flush tolerance eta of "Flush neighbours"; 0 turns the rule off.
+  double flush_tolerance = 0.0;
+};
+
+// Convex counter-clockwise polygons a and b. When the polygons are apart by more than
+// 0.1 x linear_slop and the closest features of the reference and incident faces are two
+// vertices, the manifold has one point with the normal along the line joining the two corners
+// (vertex-vertex branch) -- this is what makes corner-to-corner contact have a single normal.
+//
+// Faces: consecutive edges whose vertices lie within 1e-3 x linear_slop of one line act as
+// one face (reference or incident), so a straight vertex in the middle of a side never
+// halves the contact; the points sit at the face's end corners.
+// Parallel faces: when the two faces are parallel (within 1e-5 rad) and overlap along
+// the face, the contact is a face contact (two clipped points) even if the gap is open;
+// only faces that do not overlap give the vertex-vertex point.
+//
+// Flush neighbours (the internal-edge or "ghost collision" rule). When one polygon lies
+// against the line of a face T of the other -- its deepest point within eta = flush_tolerance
+// of T's line, on either side -- but wholly beside T along that line, the two are neighbours
+// along one surface: they can only overlap in a corner sliver no deeper and no longer than
+// eta, and the manifold is empty. This is what lets a block slide across a joint between
+// two blocks whose faces are flush (the slope surface, a row of blocks): before it crosses,
+// its leading corner sits just below the next block's corner (by its own resting overlap),
+// and the separating axis alone would take the joint face (or the slider's front face) as
+// the contact face and throw the block back. Once it has crossed, the next block's face lies
+// under it and the separating axis takes that face. It needs no knowledge of the block the
+// slider rests on: the slider lies along the next block's face line, beside the face. A
+// real step is higher than eta: the slider then reaches below T's line by the step's
+// height, the rule does not apply, and the step's face stops it. A block above T by more
+// than eta (a step down, a block in flight) is no neighbour either, and keeps its
+// speculative contacts. A kink of the surface at the joint is covered too: at a concave kink
+// the slider lies along the next face's line, at a convex one the next block lies along the
+// slider's face. (Box2D's smooth segments reach the same answer with each segment's
+// neighbours, its ghost vertices; Shi's entrance rule would take the joint face, since the
+// slider's corner, below the surface by its overlap, crosses the joint's line first.)
+//
+// Solid edges: a convex piece of a concave block has edges that run inside the block
+// (the cuts of its decomposition). Such an edge is no face: a neighbour can only be
+// across it by overlapping the block's other pieces, and taking it as the reference face
+// pushed neighbours into the block (0.5 m deep on Vajont section I). `a_solid[i]` /
+// `b_solid[i]` false marks edge i (vertex i to i + 1) as such a cut: it is never a
+// reference face or an incident face. It only counts as a separating axis to rule a
+// contact out: the other polygon wholly beyond a cut gives no manifold (it lies over or
+// beside the block's other pieces, whose own manifolds hold it). A piece whose edges turned
+// towards the reference face are all cuts has no incident face there; with `flip_for_cuts`
+// the other polygon's best face is then the reference, or there is no contact if that fails
+// the same way. The narrow phase asks for it when one of the blocks is fixed (the bedrock
+// and the banks, concave and cut into pieces), where a lost contact lets a block fall through
+// the model; between two free blocks it made Vajont sections VIII and X overlap by a third of
+// a block (2 of 20 runs failed), and there the old reading stays.
+// Empty spans: every edge is solid. Where a
+// polygon has cuts, points deeper than max_depth are dropped: no step moves a block
+// that far into another, and such a point is a corner read across a cut, inside the
+// block (one read 18 m "deep" on Vajont section I).
+Manifold collide_polygons(std::span<const Vec2> a, std::span<const Vec2> b, const ManifoldSettings& settings,
+                          std::span<const char> a_solid = {}, std::span<const char> b_solid = {});
+
+}  // namespace ddafit

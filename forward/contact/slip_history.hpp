@@ -1,0 +1,33 @@
+// Slip histories (seed Eq. 2-3, docs/theory.md §4): the slip d that degrades friction
+// belongs to the face of the overriding block that slides, through one interface, not to
+// a pair of blocks. A block crossing a joint between two blocks of a flush surface keeps
+// sliding on the same face, so it carries its slip onto the next block and the joint is
+// invisible to the law as it is to the geometry. A face that touches nothing within the
+// contact margin loses its history: the next contact starts fresh.
+#pragma once
+
+#include <cstdint>
+
+#include "forward/block_system.hpp"
+#include "forward/contact/contact_types.hpp"
+
+namespace ddafit {
+
+// The key of a face (the block vertex id where it starts) sliding through an interface.
+inline std::uint64_t slip_history_key(int face_vertex, int interface) {
+  return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(face_vertex)) << 32) |
+         static_cast<std::uint32_t>(interface);
+}
+
+// Gives every manifold of `contacts` (with face_key and overriding_block set) its history:
+// the one its key had in contacts.histories (the last step's), or a new one with no slip and
+// d_c from the overriding block's length along the contact. Replaces contacts.histories with
+// the histories in use, sorted by key, and sets each manifold's friction coefficient.
+void assign_histories(const BlockSystem& system, ContactSet& contacts);
+
+// After a (sub)step whose points have their `slip` set (0 for an open point): each face's
+// slip grows by the largest of its points' (contact_law.hpp, add_slip), and the friction
+// of every manifold follows.
+void advance_histories(const BlockSystem& system, ContactSet& contacts);
+
+}  // namespace ddafit
