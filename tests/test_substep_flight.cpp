@@ -4,7 +4,7 @@
 // pairs get a speculative margin as wide as its travel: find_pairs.hpp, collide.hpp).
 // Section VII of Vajont threw one small block clear of the toe at 50 m/s, which cut every
 // step of the remaining slide from 10 ms to 3 ms; this is that case reduced to four blocks.
-#include "tests/substep_scene_audit.hpp"
+#include "tests/contact_scene_audit.hpp"
 
 namespace ddafit {
 namespace {
@@ -60,7 +60,7 @@ constexpr double kImpactOverlapRatio = 0.10;
 // Through the impact and after: the bullet stays on its side of the wall (its centroid
 // never beyond the near face: crossing 0.6 m per step, a margin of the scene's 0.14 m alone
 // would miss the 0.3 m wall between two steps), its overlap stays within
-// kImpactOverlapRatio, and no energy is created (substep_scene_audit.hpp).
+// kImpactOverlapRatio, and no energy is created (contact_scene_audit.hpp).
 TEST(SubstepFlight, AFastBlockDoesNotPassThroughAThinWall) {
   const Scene scene = flight_scene(0.4);
   RunAudit audit;

@@ -12,7 +12,7 @@
 //   - penetration: the deepest overlap stays below 1 % of the smaller block's size (the
 //     issue's limit): measured from the geometry at every output time for both solvers,
 //     and as the substep solver reports it over every step.
-#include "tests/substep_scene_audit.hpp"
+#include "tests/contact_scene_audit.hpp"
 
 namespace ddafit {
 namespace {

@@ -37,9 +37,10 @@ const ContactManifold* previous_of(const std::vector<ContactManifold>& previous,
 
 // A point whose features touched in the last step carries its state: the substep
 // solver's impulses (warm start), the implicit solver's spring state, and its bond. A new
-// point starts unloaded; the implicit solver takes it as locked where it touches. Either
-// way its spring's state is the state at the start of this step.
-void carry_over(const ContactManifold* old, ContactPoint& p) {
+// point starts unloaded; the implicit solver takes it as locked where it touches (within
+// the slop: blocks tiled flush at t = 0 touch at separations of +-1e-15 m). Either way its
+// spring's state is the state at the start of this step.
+void carry_over(const ContactManifold* old, double slop, ContactPoint& p) {
   const auto start_step = [](SpringState& c) {
     c.step_state = c.state;
     c.state_changes = 0;
@@ -57,7 +58,7 @@ void carry_over(const ContactManifold* old, ContactPoint& p) {
       return;
     }
   }
-  p.spring.state = p.separation <= 0.0 ? ContactState::Locked : ContactState::Open;
+  p.spring.state = p.separation <= slop ? ContactState::Locked : ContactState::Open;
   start_step(p.spring);
 }
 
@@ -145,7 +146,7 @@ std::string collide(const BlockSystem& s, const ContactShapes& shapes, const std
       p.ra = mp.point - s.blocks[out.block_a].centroid;
       p.rb = mp.point - s.blocks[out.block_b].centroid;
       p.owner = shapes.corners[shapes.pieces[mp.owner == 0 ? a : b].first + mp.vertex];
-      carry_over(old, p);
+      carry_over(old, settings.linear_slop, p);
     }
     // The sliding face: the overriding block's face in this manifold, through this interface.
     out.overriding_block = overriding_block(s, out, settings.gravity);

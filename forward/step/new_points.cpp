@@ -4,17 +4,20 @@
 
 namespace ddafit {
 
+double relative_slide(const BlockSystem& s, const ContactManifold& m, const ContactPoint& p) {
+  const Block& a = s.blocks[m.block_a];
+  const Block& b = s.blocks[m.block_b];
+  const Vec2 vb = b.unknown >= 0 ? Vec2(displacement_matrix(p.anchor, b.centroid) * b.velocity) : Vec2::Zero();
+  const Vec2 va = a.unknown >= 0 ? Vec2(displacement_matrix(p.anchor, a.centroid) * a.velocity) : Vec2::Zero();
+  return m.tangent.dot(vb - va);
+}
+
 void start_new_points(const BlockSystem& s, ContactSet& contacts, double dt, double slip_tolerance) {
   for (ContactManifold& m : contacts.manifolds) {
-    const Block& a = s.blocks[m.block_a];
-    const Block& b = s.blocks[m.block_b];
     for (int q = 0; q < m.point_count; ++q) {
       ContactPoint& p = m.points[q];
       if (!p.fresh || p.spring.state == ContactState::Open) continue;
-      // Relative velocity of b against a at the point: T_b(p) V_b - T_a(p) V_a.
-      const Vec2 vb = b.unknown >= 0 ? Vec2(displacement_matrix(p.anchor, b.centroid) * b.velocity) : Vec2::Zero();
-      const Vec2 va = a.unknown >= 0 ? Vec2(displacement_matrix(p.anchor, a.centroid) * a.velocity) : Vec2::Zero();
-      const double slide = m.tangent.dot(vb - va) * dt;
+      const double slide = relative_slide(s, m, p) * dt;
       if (std::abs(slide) <= slip_tolerance) continue;
       p.spring.state = p.spring.step_state = ContactState::Sliding;
       p.spring.slip_direction = slide > 0.0 ? 1.0 : -1.0;

@@ -13,6 +13,10 @@
 
 namespace ddafit {
 
+// The tangential speed of block b against block a at point p of manifold m (m/s):
+// m.tangent . (T_b(p) V_b - T_a(p) V_a).
+double relative_slide(const BlockSystem& system, const ContactManifold& m, const ContactPoint& p);
+
 // `slip_tolerance` (m): a relative tangential motion over the step `dt` below this is no slide.
 void start_new_points(const BlockSystem& system, ContactSet& contacts, double dt, double slip_tolerance);
 

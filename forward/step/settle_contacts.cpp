@@ -4,6 +4,7 @@
 
 #include "forward/contact/contact_law.hpp"
 #include "forward/step/assemble.hpp"
+#include "forward/step/new_points.hpp"
 #include "forward/step/point_springs.hpp"
 #include "forward/step/update_blocks.hpp"
 
@@ -27,11 +28,19 @@ void load_springs(const BlockSystem& s, ContactSet& contacts, const StepParamete
       if (c.state == ContactState::Open) continue;
       const double limit = coulomb_cap(m.friction, c.normal_force, cohesive_strength(face, p));
       const double shear = step.shear_penalty * c.shear_offset;
-      if (std::abs(shear) <= limit) continue;
+      // Blocks given a velocity slide past each other from the start: locked, the spring
+      // would grab a block thrown at 4 m/s within the first step (new_points.hpp).
+      const double slide = relative_slide(s, m, p) * step.time_step;
+      if (std::abs(slide) > step.contact_tolerance) {
+        c.slip_direction = slide > 0.0 ? 1.0 : -1.0;
+      } else if (std::abs(shear) > limit) {
+        c.slip_direction = shear > 0.0 ? 1.0 : -1.0;
+      } else {
+        continue;
+      }
       c.state = ContactState::Sliding;
-      c.slip_direction = shear > 0.0 ? 1.0 : -1.0;
       break_bond(p);
-      c.shear_offset = c.slip_direction * limit / step.shear_penalty;
+      c.shear_offset = c.slip_direction * m.friction * c.normal_force / step.shear_penalty;
     }
   }
 }
@@ -92,7 +101,7 @@ bool settle_contacts(BlockSystem& s, ContactDetection& detection, ContactSet& co
     for (ContactManifold& m : contacts.manifolds)
       for (int q = 0; q < m.point_count; ++q) {
         ContactPoint& p = m.points[q];
-        if (p.spring.state != ContactState::Open || p.separation >= 0.0) continue;
+        if (p.spring.state != ContactState::Open || p.separation > detection.settings.linear_slop) continue;
         p.spring.state = ContactState::Locked;
         p.spring.shear_offset = 0.0;
         touching[m.block_a] = touching[m.block_b] = 1;

@@ -1,5 +1,6 @@
 // Scene builders, tolerances and the run audit (energy, pass-through, overlap) shared by
-// the substep contact scenes of test_substep_scenes.cpp. Included by that one file only.
+// the contact scenes of both solvers (test_substep_scenes.cpp, test_joint_crossing.cpp,
+// test_toppling.cpp). Everything is in an anonymous namespace: each test file has its own.
 #pragma once
 
 #include <gtest/gtest.h>
