@@ -88,11 +88,11 @@ const char* to_string(ContactState state) {
 }
 
 std::string collide(const BlockSystem& s, const ContactShapes& shapes, const std::vector<std::pair<int, int>>& pairs,
-                    const CollideSettings& settings, ContactSet& contacts) {
+                    const CollideSettings& settings, ContactSet& contacts, std::vector<Manifold>& geometry) {
   // Pass 1, the geometry of every pair of boxes; pass 2 builds the manifolds of the pairs
   // that touch, in place (no full manifold per pair of boxes, no copy).
   const long n = static_cast<long>(pairs.size());
-  std::vector<Manifold> geometry(pairs.size());
+  geometry.resize(pairs.size());
 #pragma omp parallel for schedule(static) if (n >= kParallelMinimum)
   for (long k = 0; k < n; ++k) {
     const auto [a, b] = pairs[k];
@@ -153,6 +153,9 @@ std::string collide(const BlockSystem& s, const ContactShapes& shapes, const std
     const bool on_a = out.overriding_block == out.block_a;
     const int face = (m.reference == 0) == on_a ? m.reference_face : m.incident_face;
     out.face_key = slip_history_key(shapes.corners[shapes.pieces[on_a ? a : b].first + face], out.interface);
+    // The last step's history of this face, when the same pair touched through it
+    // (assign_histories() finds the others by key).
+    out.history = old && old->face_key == out.face_key ? old->history : -1;
     // Cohesion and tension act along the face the two points share, half each; a single
     // point (corner on corner, corner on face) has no bonded length.
     const double shared = m.point_count == 2 ? (m.points[0].point - m.points[1].point).norm() : 0.0;

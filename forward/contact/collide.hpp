@@ -12,6 +12,7 @@
 
 #include "forward/block_system.hpp"
 #include "forward/contact/contact_types.hpp"
+#include "forward/contact/manifold.hpp"
 
 namespace ddafit {
 
@@ -37,10 +38,11 @@ struct CollideSettings {
 };
 
 // Replaces `contacts` (the last step's, manifolds sorted by piece pair, histories by key)
-// with this step's. Returns an empty string, or a description of two touching blocks
-// that have no interface.
+// with this step's. `scratch` holds the geometry of every pair between calls (its memory
+// is reused). Returns an empty string, or a description of two touching blocks that have
+// no interface.
 std::string collide(const BlockSystem& system, const ContactShapes& shapes,
                     const std::vector<std::pair<int, int>>& pairs, const CollideSettings& settings,
-                    ContactSet& contacts);
+                    ContactSet& contacts, std::vector<Manifold>& scratch);
 
 }  // namespace ddafit

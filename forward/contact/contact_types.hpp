@@ -51,26 +51,30 @@ struct SpringState {
   double step_slip = 0.0;   // relative tangential motion over the step, m
 };
 
-// The substep solver's impulses at a point (forward/substep/).
+// The substep solver's impulses at a point (forward/substep/). The fields the sweeps read
+// come first (they stream through every point several times per substep).
 struct ImpulseState {
   double normal = 0.0;    // N s/m, accumulated over the last substep (warm start)
   double tangent = 0.0;   // N s/m
   double normal_mass = 0.0;   // 1 / (J W J^T) along the normal, kg/m
   double tangent_mass = 0.0;  // along the tangent
-  double step_normal = 0.0;   // N s/m, summed over the substeps of this step
-  double step_tangent = 0.0;
   double tension = 0.0;   // largest tensile impulse per substep while bonded
   double cohesion = 0.0;  // cohesive shear impulse per substep while bonded
+  double step_normal = 0.0;   // N s/m, summed over the substeps of this step
+  double step_tangent = 0.0;
 };
 
+// A contact point. Laid out for the substep solver's sweeps: what they read first.
 struct ContactPoint {
-  std::uint32_t id = 0;  // feature key of the manifold (forward/contact/manifold.hpp)
-  int owner = -1;        // vertex id of the corner the point sits on
-  Vec2 anchor = Vec2::Zero();  // the point at the start of the step, world
-  double separation = 0.0;     // along the normal at the start of the step, m (< 0: penetration)
   // The point about each block's centroid at the start of the step: the relative motion
   // of the two blocks there is T_b(p) D_b - T_a(p) D_a (Shi 1993 eq. 2.2).
   Vec2 ra = Vec2::Zero(), rb = Vec2::Zero();
+  double separation = 0.0;     // along the normal at the start of the step, m (< 0: penetration)
+  ImpulseState impulse;        // substep solver
+
+  std::uint32_t id = 0;  // feature key of the manifold (forward/contact/manifold.hpp)
+  int owner = -1;        // vertex id of the corner the point sits on
+  Vec2 anchor = Vec2::Zero();  // the point at the start of the step, world
   double slip = 0.0;  // |tangential slip| of the last (sub)step while closed, m
   bool fresh = true;  // its features did not touch in the last step
 
@@ -80,24 +84,26 @@ struct ContactPoint {
   double bond_length = 0.0;  // m
 
   SpringState spring;    // implicit solver
-  ImpulseState impulse;  // substep solver
 };
 
 // One touching pair of convex pieces of different blocks: one normal, at most two points.
+// The fields the sweeps read come first.
 struct ContactManifold {
-  int piece_a = -1, piece_b = -1;
   int block_a = -1, block_b = -1;
-  int interface = -1;
+  int point_count = 0;
+  double friction = 0.0;        // tan(phi) at the history's slip (contact_law.hpp)
+  double deep_overlap = 0.0;    // m: an overlap beyond this is corrected in position (substep solver)
   Vec2 normal = Vec2::Zero();   // unit, from a to b
   Vec2 tangent = Vec2::Zero();  // normal turned 90 degrees clockwise
+  ContactPoint points[2];
+
+  int piece_a = -1, piece_b = -1;
+  int interface = -1;
   // The slip history of the face that slides (slip_history.hpp): index into the step's
   // histories, and its key (the overriding block's face and the interface).
   int history = -1;
   std::uint64_t face_key = 0;
   int overriding_block = -1;  // whose length sets d_c (seed Eq. 2)
-  double friction = 0.0;      // tan(phi) at the history's slip (contact_law.hpp)
-  int point_count = 0;
-  ContactPoint points[2];
 };
 
 // d of seed Eq. 2-3, kept per sliding face: the face of the overriding block that touches
@@ -106,10 +112,14 @@ struct ContactManifold {
 // (docs/theory.md §4).
 struct SlipHistory {
   std::uint64_t key = 0;
+  int interface = -1;
   double slip = 0.0;               // accumulated while the face touches, m
   double last_slip = 0.0;          // of the last (sub)step: the mid-step predictor
   double critical_distance = 0.0;  // d_c, m
   double increment = 0.0;          // this (sub)step's slip, gathered from the points
+  double friction = 0.0;           // tan(phi) at the predicted slip (contact_law.hpp)
+  bool settled = false;            // no further slip changes the friction
+  bool changed = true;             // the friction changed in the last update
 };
 
 // What the contact stage hands a solver each step.

@@ -70,8 +70,17 @@ std::vector<std::pair<int, int>> find_pairs(const BlockSystem& s, const ContactS
       pairs.emplace_back(std::min(a.piece, b.piece), std::max(a.piece, b.piece));
     }
   }
-  std::sort(pairs.begin(), pairs.end());
-  return pairs;
+  // Sorted by (a, b): a counting sort on a, then each (short) run by b. A comparison sort
+  // of the ~30 000 pairs of Vajont section VII was 5 % of a run.
+  std::vector<int> start(shapes.pieces.size() + 1, 0);
+  for (const auto& [a, b] : pairs) ++start[a + 1];
+  for (size_t k = 1; k < start.size(); ++k) start[k] += start[k - 1];
+  std::vector<std::pair<int, int>> sorted(pairs.size());
+  std::vector<int> next(start.begin(), start.end() - 1);
+  for (const auto& pair : pairs) sorted[next[pair.first]++] = pair;
+  for (size_t a = 0; a + 1 < start.size(); ++a)
+    std::sort(sorted.begin() + start[a], sorted.begin() + start[a + 1]);
+  return sorted;
 }
 
 }  // namespace ddafit

@@ -28,4 +28,11 @@ inline double friction_law(const Interface& face, double slip, double critical_d
   return tan_degrees(bilinear_friction_angle(face, slip, critical_distance));
 }
 
+// Whether more slip can change the friction of a face that has slipped d: not once the
+// roughness is gone (d >= d_c), nor without roughness. Lets the solvers skip the law for the
+// many contacts that have reached their residual friction.
+inline bool friction_law_settled(const Interface& face, double slip, double critical_distance) {
+  return face.roughness_angle == 0.0 || slip >= critical_distance;
+}
+
 }  // namespace ddafit

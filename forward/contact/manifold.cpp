@@ -30,15 +30,25 @@ struct Shape {
 struct Axis {
   int edge = -1;
   double separation = -kInfinity;
+  bool flush_beside = false;  // "Flush neighbours" (manifold.hpp) holds for one of p's faces
 };
+
+// A polygon seen along a face of p from its first vertex p0: whether q, whose projections
+// onto the face's tangent from p0 span [lo, hi], lies wholly beside the face. The face is
+// edge i grown over collinear neighbours (a straight vertex in a side must not make q look
+// beside half of it).
+bool beside_face(const Shape& p, int i, const Vec2& tangent, double lo, double hi, double flat);
 
 // The edge of p whose normal separates q from p the most. p's own extent beyond the
 // edge along that normal is subtracted: it is zero for a convex polygon, but keeps the
 // value a true lower bound of the gap if a nearly straight vertex leaves a tiny edge
 // whose normal points anywhere.
 // Stops early once the separation passes `apart` (no contact then; the caller only needs
-// to know that).
-Axis best_axis(const Shape& p, const Shape& q, double tiny, std::span<const char> solid, double apart) {
+// to know that). With eta > 0 it also tells whether q lies against one of p's faces (its
+// gap within eta on either side) but wholly beside it (Flush neighbours): the gap is at
+// hand, and only such faces need q's extent along them.
+Axis best_axis(const Shape& p, const Shape& q, double tiny, std::span<const char> solid, double apart, double eta,
+               double flat) {
   Axis best;
   for (int i = 0; i < p.n; ++i) {
     if (!solid.empty() && !solid[static_cast<size_t>(i)]) continue;
@@ -48,9 +58,22 @@ Axis best_axis(const Shape& p, const Shape& q, double tiny, std::span<const char
     const Vec2 normal = outward(edge) / length;
     double own = 0.0, gap = kInfinity;
     for (int k = 0; k < q.n; ++k) gap = std::min(gap, normal.dot(q.at(k) - p0));
+    if (!best.flush_beside && std::abs(gap) <= eta) {
+      const Vec2 tangent = edge / length;
+      double lo = kInfinity, hi = -kInfinity;
+      for (int k = 0; k < q.n; ++k) {
+        const double u = tangent.dot(q.at(k) - p0);
+        lo = std::min(lo, u);
+        hi = std::max(hi, u);
+      }
+      if ((hi <= 0.0 || lo >= length) && beside_face(p, i, tangent, lo, hi, flat)) best.flush_beside = true;
+    }
     if (!(gap > best.separation)) continue;  // own >= 0 cannot make it better
     for (int k = 0; k < p.n; ++k) own = std::max(own, normal.dot(p.at(k) - p0));
-    if (gap - own > best.separation) best = {i, gap - own};
+    if (gap - own > best.separation) {
+      best.edge = i;
+      best.separation = gap - own;
+    }
     if (best.separation > apart) break;
   }
   return best;
@@ -214,31 +237,11 @@ void clip_face_contact(const Shape& ref, const Face& rf, const Shape& inc, const
   m.incident_face = incf.first;
 }
 
-// Flush neighbours (manifold.hpp): a solid face T of p whose line q lies against, within
-// eta on either side, while q lies wholly beside T along it.
-bool flush_neighbours(const Shape& p, const Shape& q, std::span<const char> solid, double eta, double tiny,
-                      double flat) {
-  for (int i = 0; i < p.n; ++i) {
-    if (!solid.empty() && !solid[static_cast<size_t>(i)]) continue;
-    const Vec2 p0 = p.at(i), edge = p.at(i + 1) - p0;
-    const double length = edge.norm();
-    if (!(length > tiny)) continue;
-    const Vec2 normal = outward(edge) / length, tangent = edge / length;
-    double gap = kInfinity;
-    for (int k = 0; k < q.n; ++k) gap = std::min(gap, normal.dot(q.at(k) - p0));
-    if (std::abs(gap) > eta) continue;
-    // T's extent: the edge grown over collinear neighbours, along the tangent from p0.
-    const Face f = grow_face(p, i, flat);
-    const double from = (p.at(f.first) - p0).dot(tangent), to = (p.at(f.last) - p0).dot(tangent);
-    double lo = kInfinity, hi = -kInfinity;
-    for (int k = 0; k < q.n; ++k) {
-      const double u = (q.at(k) - p0).dot(tangent);
-      lo = std::min(lo, u);
-      hi = std::max(hi, u);
-    }
-    if (hi <= from || lo >= to) return true;
-  }
-  return false;
+bool beside_face(const Shape& p, int i, const Vec2& tangent, double lo, double hi, double flat) {
+  const Face f = grow_face(p, i, flat);
+  const Vec2 p0 = p.at(i);
+  const double from = (p.at(f.first) - p0).dot(tangent), to = (p.at(f.last) - p0).dot(tangent);
+  return hi <= from || lo >= to;
 }
 
 }  // namespace
@@ -257,9 +260,14 @@ Manifold collide_polygons(std::span<const Vec2> a, std::span<const Vec2> b, cons
 
   // Separating axes of both polygons; apart along any axis by more than the margin
   // means no contact at all.
-  const Axis axis_a = best_axis(sa, sb, tiny, a_solid, max_distance);
+  // Edges whose vertices lie within `flat` of one line make one face (grow_face). A quarter
+  // of the flush tolerance: the mesher leaves vertices 0.5 mm off straight on 8 m Vajont
+  // blocks (where joints met a side), and a face split there gave a sliver lying along it
+  // contact on one half only: its tip sank 18 cm into the other half.
+  const double eta = settings.flush_tolerance, flat = std::max(1e-3 * linear_slop, 0.25 * eta);
+  const Axis axis_a = best_axis(sa, sb, tiny, a_solid, max_distance, eta, flat);
   if (axis_a.separation > max_distance) return m;
-  const Axis axis_b = best_axis(sb, sa, tiny, b_solid, max_distance);
+  const Axis axis_b = best_axis(sb, sa, tiny, b_solid, max_distance, eta, flat);
   if (axis_a.edge < 0 && axis_b.edge < 0) return m;
   if (axis_b.separation > max_distance) return m;
   const auto cut_in = [](std::span<const char> solid) {
@@ -273,12 +281,9 @@ Manifold collide_polygons(std::span<const Vec2> a, std::span<const Vec2> b, cons
   // 0.62 m "deep" in the neighbouring piece (no solid axis separated them) and stopped
   // Vajont sections VI, IX and X with overlaps of 25 % of a block that did not exist.
   if (has_cuts && (cut_separates(sa, sb, tiny, a_solid) || cut_separates(sb, sa, tiny, b_solid))) return m;
-  const double flat = 1e-3 * linear_slop;
 
   // Flush neighbours: two polygons along one surface line touch only at a corner sliver.
-  const double eta = settings.flush_tolerance;
-  if (eta > 0.0 && (flush_neighbours(sa, sb, a_solid, eta, tiny, flat) || flush_neighbours(sb, sa, b_solid, eta, tiny, flat)))
-    return m;
+  if (axis_a.flush_beside || axis_b.flush_beside) return m;
 
   // Reference polygon: a unless b's axis is clearly better, so that two equally good
   // axes do not swap the reference (and the point ids) from one call to the next.

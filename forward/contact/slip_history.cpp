@@ -1,60 +1,118 @@
 #include "forward/contact/slip_history.hpp"
 
 #include <algorithm>
+#include <numeric>
 
 #include "forward/contact/contact_law.hpp"
-#include "forward/parallel.hpp"
 
 namespace ddafit {
 namespace {
 
-// tan(phi) of every manifold from its face's history.
-void update_friction(const BlockSystem& s, ContactSet& contacts) {
-  const long n = static_cast<long>(contacts.manifolds.size());
-#pragma omp parallel for schedule(static) if (n >= kParallelMinimum)
-  for (long k = 0; k < n; ++k) {
-    ContactManifold& m = contacts.manifolds[k];
-    if (m.history >= 0) m.friction = friction_coefficient(s.interfaces[m.interface], contacts.histories[m.history]);
+// tan(phi) of a history from the law, unless no further slip can change it.
+void refresh_friction(const BlockSystem& s, SlipHistory& h) {
+  h.changed = !h.settled;
+  if (h.settled) return;
+  const Interface& face = s.interfaces[h.interface];
+  h.friction = friction_coefficient(face, h);
+  h.settled = friction_law_settled(face, h.slip, h.critical_distance);
+}
+
+// Sorts the histories by key (the next step finds a face's history by binary search) and
+// points the manifolds at their new places.
+void sort_histories(ContactSet& contacts) {
+  std::vector<SlipHistory>& h = contacts.histories;
+  std::vector<int> order(h.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::sort(order.begin(), order.end(), [&](int x, int y) { return h[x].key < h[y].key; });
+  std::vector<int> place(h.size());
+  std::vector<SlipHistory> sorted(h.size());
+  for (size_t k = 0; k < order.size(); ++k) {
+    place[order[k]] = static_cast<int>(k);
+    sorted[k] = h[order[k]];
   }
+  h.swap(sorted);
+  for (ContactManifold& m : contacts.manifolds)
+    if (m.history >= 0) m.history = place[m.history];
 }
 
 }  // namespace
 
 void assign_histories(const BlockSystem& s, ContactSet& contacts) {
-  std::vector<ContactManifold>& manifolds = contacts.manifolds;
-  std::vector<std::uint64_t> keys;
-  keys.reserve(manifolds.size());
-  for (const ContactManifold& m : manifolds)
-    if (m.interface >= 0) keys.push_back(m.face_key);
-  std::sort(keys.begin(), keys.end());
-  keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
-
   const std::vector<SlipHistory> previous = std::move(contacts.histories);
   std::vector<SlipHistory>& histories = contacts.histories;
-  histories.assign(keys.size(), SlipHistory{});
-  for (size_t k = 0; k < keys.size(); ++k) {
-    const auto old = std::lower_bound(previous.begin(), previous.end(), keys[k],
-                                      [](const SlipHistory& h, std::uint64_t key) { return h.key < key; });
-    if (old != previous.end() && old->key == keys[k]) histories[k] = *old;
-    histories[k].key = keys[k];
-    histories[k].increment = 0.0;
+  histories.clear();
+  std::vector<int> carried(previous.size(), -1);     // previous history -> this step's
+  std::vector<std::pair<std::uint64_t, int>> fresh;  // faces new in this step -> this step's
+  bool in_order = true;
+  for (ContactManifold& m : contacts.manifolds) {
+    if (m.interface < 0) {
+      m.history = -1;
+      continue;
+    }
+    // m.history is the last step's history of the same pair and face, if collide() found
+    // one; otherwise the face may have touched another block (a joint crossed).
+    int old = m.history;
+    if (old < 0) {
+      const auto it = std::lower_bound(previous.begin(), previous.end(), m.face_key,
+                                       [](const SlipHistory& h, std::uint64_t key) { return h.key < key; });
+      if (it != previous.end() && it->key == m.face_key) old = static_cast<int>(it - previous.begin());
+    }
+    if (old >= 0) {
+      if (carried[old] < 0) {
+        carried[old] = static_cast<int>(histories.size());
+        histories.push_back(previous[old]);
+        histories.back().increment = 0.0;
+      }
+      m.history = carried[old];
+    } else {
+      const auto same = std::find_if(fresh.begin(), fresh.end(), [&](const auto& f) { return f.first == m.face_key; });
+      if (same != fresh.end()) {
+        m.history = same->second;
+      } else {
+        SlipHistory h;
+        h.key = m.face_key;
+        h.interface = m.interface;
+        h.critical_distance =
+            critical_distance(s.interfaces[m.interface], block_length_along(s, m.overriding_block, m.tangent));
+        refresh_friction(s, h);
+        h.changed = true;
+        m.history = static_cast<int>(histories.size());
+        fresh.emplace_back(m.face_key, m.history);
+        histories.push_back(h);
+      }
+    }
+    if (histories.size() > 1 && m.history == static_cast<int>(histories.size()) - 1 &&
+        histories[m.history - 1].key > histories[m.history].key)
+      in_order = false;
   }
-  for (ContactManifold& m : manifolds) {
-    if (m.interface < 0) continue;
-    m.history = static_cast<int>(std::lower_bound(keys.begin(), keys.end(), m.face_key) - keys.begin());
-    SlipHistory& h = histories[m.history];
-    if (h.critical_distance == 0.0)
-      h.critical_distance = critical_distance(s.interfaces[m.interface], block_length_along(s, m.overriding_block, m.tangent));
+  if (!in_order) sort_histories(contacts);
+  for (ContactManifold& m : contacts.manifolds)
+    if (m.history >= 0) m.friction = histories[m.history].friction;
+}
+
+void reset_histories(const BlockSystem& s, ContactSet& contacts) {
+  for (SlipHistory& h : contacts.histories) {
+    h.slip = h.last_slip = h.increment = 0.0;
+    h.settled = false;
+    refresh_friction(s, h);
   }
-  update_friction(s, contacts);
+  for (ContactManifold& m : contacts.manifolds)
+    if (m.history >= 0) m.friction = contacts.histories[m.history].friction;
 }
 
 void advance_histories(const BlockSystem& s, ContactSet& contacts) {
   for (const ContactManifold& m : contacts.manifolds)
     if (m.history >= 0)
       for (int q = 0; q < m.point_count; ++q) gather_slip(contacts.histories[m.history], m.points[q].slip);
-  for (SlipHistory& h : contacts.histories) add_slip(h);
-  update_friction(s, contacts);
+  bool any = false;
+  for (SlipHistory& h : contacts.histories) {
+    add_slip(h);
+    refresh_friction(s, h);
+    any = any || h.changed;
+  }
+  if (!any) return;
+  for (ContactManifold& m : contacts.manifolds)
+    if (m.history >= 0 && contacts.histories[m.history].changed) m.friction = contacts.histories[m.history].friction;
 }
 
 }  // namespace ddafit

@@ -19,11 +19,15 @@ inline std::uint64_t slip_history_key(int face_vertex, int interface) {
          static_cast<std::uint32_t>(interface);
 }
 
-// Gives every manifold of `contacts` (with face_key and overriding_block set) its history:
-// the one its key had in contacts.histories (the last step's), or a new one with no slip and
-// d_c from the overriding block's length along the contact. Replaces contacts.histories with
-// the histories in use, sorted by key, and sets each manifold's friction coefficient.
+// Gives every manifold of `contacts` (with face_key, overriding_block, and in `history` the
+// index of the last step's history of the same pair and face or -1) its history: the one its
+// key had in contacts.histories (the last step's), or a new one with no slip and d_c from the
+// overriding block's length along the contact. Replaces contacts.histories with the
+// histories in use, sorted by key, and sets each manifold's friction coefficient.
 void assign_histories(const BlockSystem& system, ContactSet& contacts);
+
+// Forgets every face's slip (the quiet start's settling is not part of the slide).
+void reset_histories(const BlockSystem& system, ContactSet& contacts);
 
 // After a (sub)step whose points have their `slip` set (0 for an open point): each face's
 // slip grows by the largest of its points' (contact_law.hpp, add_slip), and the friction

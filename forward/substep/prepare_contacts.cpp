@@ -1,7 +1,9 @@
 #include "forward/substep/prepare_contacts.hpp"
 #include "forward/parallel.hpp"
 
+#include <algorithm>
 #include <bit>
+#include <cmath>
 #include <cstdint>
 
 #include "forward/contact/contact_law.hpp"
@@ -27,8 +29,8 @@ void compute_block_masses(const BlockSystem& s, std::vector<BlockMass>& masses) 
   }
 }
 
-void prepare_contacts(const BlockSystem& s, const std::vector<BlockMass>& masses, double h,
-                      std::vector<ContactManifold>& manifolds) {
+void prepare_contacts(const BlockSystem& s, const std::vector<BlockMass>& masses, double h, double deep_overlap,
+                      double slop, std::vector<ContactManifold>& manifolds) {
   const long n = static_cast<long>(manifolds.size());
 #pragma omp parallel for schedule(static) if (n >= kParallelMinimum)
   for (long k = 0; k < n; ++k) {
@@ -36,6 +38,8 @@ void prepare_contacts(const BlockSystem& s, const std::vector<BlockMass>& masses
     const BlockMass& ma = masses[m.block_a];
     const BlockMass& mb = masses[m.block_b];
     const Interface& face = s.interfaces[m.interface];
+    const auto size = [&](int b) { return s.blocks[b].fixed ? 1e300 : std::sqrt(std::abs(s.blocks[b].area)); };
+    m.deep_overlap = std::max(slop, deep_overlap * std::min(size(m.block_a), size(m.block_b)));
     for (int q = 0; q < m.point_count; ++q) {
       ContactPoint& p = m.points[q];
       // J W J^T of a unit impulse along d: 1/m_a + 1/m_b + (r_a x d)^2 / I_a + (r_b x d)^2 / I_b.

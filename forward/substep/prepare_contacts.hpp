@@ -13,10 +13,12 @@ namespace ddafit {
 // Inverse mass and inertia per block (substep_types.hpp, BlockMass).
 void compute_block_masses(const BlockSystem& system, std::vector<BlockMass>& masses);
 
-// Lever arms and effective masses of every point, at the start of the step; bonded points
-// get their cohesion and tension as impulses over one substep h (contact_law.hpp).
-void prepare_contacts(const BlockSystem& system, const std::vector<BlockMass>& masses, double h,
-                      std::vector<ContactManifold>& manifolds);
+// Effective masses of every point, at the start of the step; bonded points get their
+// cohesion and tension as impulses over one substep h (contact_law.hpp); each manifold the
+// overlap from which its points are corrected in position: `deep_overlap` times the smaller
+// free block's size (the square root of its area), at least the slop (solve_contacts.hpp).
+void prepare_contacts(const BlockSystem& system, const std::vector<BlockMass>& masses, double h, double deep_overlap,
+                      double slop, std::vector<ContactManifold>& manifolds);
 
 // Groups manifolds into colours such that no two manifolds of a colour share a moving
 // block (Box2D v3's constraint graph): a colour's manifolds can be solved at the same

@@ -27,6 +27,9 @@ void for_each_coloured(const std::vector<std::vector<int>>& colours, Body&& body
   }
 }
 
+// Position correction: the largest ratio of two free blocks' inverse masses it uses.
+constexpr double kCorrectionMassRatio = 1.0;
+
 // Applies impulse P (a vector) at the point: -P on block a, +P on block b.
 inline void apply(Vec3& va, Vec3& vb, const BlockMass& ma, const BlockMass& mb, const ContactPoint& p,
                   const Vec2& impulse) {
@@ -88,6 +91,7 @@ void solve_contacts(std::vector<ContactManifold>& manifolds, const std::vector<s
                         -settings.max_pushout_speed);
         mass_scale = settings.softness.mass_scale;
       }
+      if (!settings.use_bias && gap < -m.deep_overlap) st.deep[k] = 1;
       const double vn = m.normal.dot(velocity_at(vb, p.rb) - velocity_at(va, p.ra));
       const double change = -p.impulse.normal_mass * mass_scale * (vn + bias);
       // Contact law: compression only, unless a bond holds tension (tension cut-off).
@@ -103,6 +107,53 @@ void solve_contacts(std::vector<ContactManifold>& manifolds, const std::vector<s
       p.impulse.tangent = tangent;
     }
   });
+}
+
+void correct_positions(const std::vector<ContactManifold>& manifolds, const PositionCorrection& settings,
+                       SweepState& st) {
+  // The deep manifolds and every other manifold of their blocks: a correction that moves a
+  // block may push it into another neighbour, and that overlap is corrected in the same pass.
+  std::vector<char> moved(st.velocity.size(), 0);
+  bool any = false;
+  for (int k = 0; k < static_cast<int>(st.deep.size()); ++k)
+    if (st.deep[k]) moved[manifolds[k].block_a] = moved[manifolds[k].block_b] = 1, any = true;
+  if (!any) return;
+  std::vector<int> deep;
+  for (int k = 0; k < static_cast<int>(manifolds.size()); ++k) {
+    const ContactManifold& m = manifolds[k];
+    if ((moved[m.block_a] && st.masses[m.block_a].moves) || (moved[m.block_b] && st.masses[m.block_b].moves))
+      deep.push_back(k);
+  }
+  for (int pass = 0; pass < settings.passes; ++pass) {
+    for (const int k : deep) {
+      const ContactManifold& m = manifolds[k];
+      BlockMass ma = st.masses[m.block_a], mb = st.masses[m.block_b];
+      // Shared between the blocks as an impulse would be, but with the lighter block's
+      // inverse mass and inertia capped at kCorrectionMassRatio times the heavier one's: a
+      // small block wedged between two large ones is otherwise moved from one overlap into
+      // the other while the large ones hardly part.
+      if (ma.moves && mb.moves) {
+        const double cap = kCorrectionMassRatio * std::min(ma.inverse_mass, mb.inverse_mass);
+        BlockMass& light = ma.inverse_mass > mb.inverse_mass ? ma : mb;
+        if (light.inverse_mass > cap) {
+          const double scale = cap / light.inverse_mass;
+          light.inverse_mass *= scale;
+          light.inverse_inertia *= scale;
+        }
+      }
+      Vec3& da = st.step_moves[m.block_a];
+      Vec3& db = st.step_moves[m.block_b];
+      for (int q = 0; q < m.point_count; ++q) {
+        const ContactPoint& p = m.points[q];
+        const double excess = -current_gap(m, p, st.step_moves) - m.deep_overlap;
+        if (excess <= 0.0) continue;
+        const double correction = std::min(settings.fraction * excess, settings.max_correction);
+        const double ca = cross2(p.ra, m.normal), cb = cross2(p.rb, m.normal);
+        const double k_n = ma.inverse_mass + mb.inverse_mass + ma.inverse_inertia * ca * ca + mb.inverse_inertia * cb * cb;
+        if (k_n > 0.0) apply(da, db, ma, mb, p, (correction / k_n) * m.normal);
+      }
+    }
+  }
 }
 
 void advance_slip(const BlockSystem& s, const std::vector<Vec3>& moves, ContactSet& contacts) {
