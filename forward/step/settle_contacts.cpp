@@ -98,10 +98,12 @@ bool settle_contacts(BlockSystem& s, ContactDetection& detection, ContactSet& co
     problem = detect_contacts(s, detection, contacts);
     detection.settings.first_step = true;
     if (!problem.empty()) return true;
+    // (A point new in this detection that touches was locked by the detection itself.)
     for (ContactManifold& m : contacts.manifolds)
       for (int q = 0; q < m.point_count; ++q) {
         ContactPoint& p = m.points[q];
-        if (p.spring.state != ContactState::Open || p.separation > detection.settings.linear_slop) continue;
+        const bool closes = p.spring.state == ContactState::Open && p.separation <= detection.settings.linear_slop;
+        if (!closes && !(p.fresh && p.spring.state != ContactState::Open)) continue;
         p.spring.state = ContactState::Locked;
         p.spring.shear_offset = 0.0;
         touching[m.block_a] = touching[m.block_b] = 1;

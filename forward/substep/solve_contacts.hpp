@@ -37,7 +37,7 @@ struct SweepState {
   std::vector<Vec3> velocity;
   std::vector<Vec3> step_moves;
   std::vector<BlockMass> masses;
-  std::vector<char> deep;  // per manifold: a point overlapped beyond its deep_overlap in the last relax sweep
+  std::vector<char> deep;  // per manifold: a point overlapped beyond its deep_overlap in a relax sweep of the step
 };
 
 void warm_start(const std::vector<ContactManifold>& manifolds, const std::vector<std::vector<int>>& colours,
@@ -46,8 +46,8 @@ void solve_contacts(std::vector<ContactManifold>& manifolds, const std::vector<s
                     const SweepSettings& settings, SweepState& state);
 
 // Position correction, once per step after the substeps (Box2D v2's non-linear Gauss-Seidel
-// position pass, kept for deep overlaps only): every point of a manifold that the last relax
-// sweep found overlapping by more than its deep_overlap (prepare_contacts.hpp) moves its two
+// position pass, kept for deep overlaps only): every point of a manifold that a relax sweep of
+// the step found overlapping by more than its deep_overlap (prepare_contacts.hpp) moves its two
 // blocks apart along its normal by `fraction` of the excess over that depth, at most
 // `max_correction` (m) per pass, straight in position (the step's moves) and not through
 // velocities, so that no push-out speed is left as kinetic energy. The soft push-out of the
