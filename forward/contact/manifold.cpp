@@ -79,8 +79,11 @@ Axis best_axis(const Shape& p, const Shape& q, double tiny, std::span<const char
   return best;
 }
 
-// Whether a cut of p (an edge marked not solid) has q wholly on its outer side.
-bool cut_separates(const Shape& p, const Shape& q, double tiny, std::span<const char> solid) {
+// Whether a cut of p (an edge marked not solid) has q wholly on its outer side, to within
+// `slop`: blocks tiled flush share vertices, and a neighbour touching a piece only at the end
+// of its cut lies exactly on the cut's line (Vajont sections V and VIII: the thin piece of a
+// pinched block then read the neighbour's side face 0.27-0.57 m "deep" through its cut).
+bool cut_separates(const Shape& p, const Shape& q, double tiny, std::span<const char> solid, double slop) {
   for (int i = 0; i < p.n && !solid.empty(); ++i) {
     if (solid[static_cast<size_t>(i)]) continue;
     const Vec2 p0 = p.at(i), edge = p.at(i + 1) - p0;
@@ -89,7 +92,7 @@ bool cut_separates(const Shape& p, const Shape& q, double tiny, std::span<const 
     const Vec2 normal = outward(edge) / length;
     double gap = kInfinity;
     for (int k = 0; k < q.n; ++k) gap = std::min(gap, normal.dot(q.at(k) - p0));
-    if (gap > 0.0) return true;
+    if (gap > -slop) return true;
   }
   return false;
 }
@@ -208,7 +211,12 @@ void clip_face_contact(const Shape& ref, const Face& rf, const Shape& inc, const
   const Candidate inc_first{v21, inc_owner, incf.first, rf.first};
   const Candidate inc_last{v22, inc_owner, incf.last, rf.first};
   if (u21 <= 0.0 || u22 >= ref_length) {
-    c[count++] = u21 <= 0.0 ? inc_first : inc_last;
+    // Only a corner within the margin of the face's end, along the face: one further off
+    // is no contact of this face, and its depth from the face's line extended is meaningless
+    // (the thin piece of a pinched Vajont block, section V, read a corner 2.2 m past the end
+    // of a neighbour's face 0.57 m "deep" below that face's line).
+    const double beyond = u21 <= 0.0 ? -u21 : u22 - ref_length;
+    if (beyond < settings.max_distance) c[count++] = u21 <= 0.0 ? inc_first : inc_last;
   } else {
     // The incident face runs against the tangent: v22 is the end near v11.
     if (u22 < 0.0) {
@@ -280,7 +288,8 @@ Manifold collide_polygons(std::span<const Vec2> a, std::span<const Vec2> b, cons
   // small block sliding on one piece past the reflex corner where a cut starts was read
   // 0.62 m "deep" in the neighbouring piece (no solid axis separated them) and stopped
   // Vajont sections VI, IX and X with overlaps of 25 % of a block that did not exist.
-  if (has_cuts && (cut_separates(sa, sb, tiny, a_solid) || cut_separates(sb, sa, tiny, b_solid))) return m;
+  if (has_cuts && (cut_separates(sa, sb, tiny, a_solid, linear_slop) || cut_separates(sb, sa, tiny, b_solid, linear_slop)))
+    return m;
 
   // Flush neighbours: two polygons along one surface line touch only at a corner sliver.
   if (axis_a.flush_beside || axis_b.flush_beside) return m;

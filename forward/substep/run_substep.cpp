@@ -54,6 +54,9 @@ constexpr int kCorrectionPasses = 3;
 constexpr double kCorrectionFraction = 0.8;
 constexpr double kDeepOverlap = 0.004;
 constexpr double kCorrectionShare = 0.2;
+// Extra relax sweeps per substep over the deep manifolds and their neighbours
+// (solve_contacts.hpp, converge_deep).
+constexpr int kDeepIterations = 16;
 
 struct SubstepWork {
   ContactDetection detection;
@@ -142,6 +145,7 @@ void run_one_substep(const BlockSystem& s, SubstepWork& w, const SweepSettings& 
   solve_contacts(w.contacts.manifolds, w.colours, sweep, w.state);
   integrate_positions(w.state, sweep.h, w.start_velocity, w.moves);
   solve_contacts(w.contacts.manifolds, w.colours, relax, w.state);
+  converge_deep(w.contacts.manifolds, relax, kDeepIterations, w.state);
   advance_slip(s, w.moves, w.contacts);
 }
 

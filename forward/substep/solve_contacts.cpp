@@ -65,66 +65,89 @@ void warm_start(const std::vector<ContactManifold>& manifolds, const std::vector
   });
 }
 
+namespace {
+
+// One manifold of a sweep: the normal impulses with the push-out (or none in the relax
+// sweep), then friction under the Mohr-Coulomb cap.
+void solve_manifold(ContactManifold& m, char& deep, const SweepSettings& settings, double inv_h, SweepState& st) {
+  Vec3& va = st.velocity[m.block_a];
+  Vec3& vb = st.velocity[m.block_b];
+  const BlockMass& ma = st.masses[m.block_a];
+  const BlockMass& mb = st.masses[m.block_b];
+  for (int q = 0; q < m.point_count; ++q) {
+    ContactPoint& p = m.points[q];
+    // Normal: the gap now, from the step's start and the blocks' moves since.
+    const double gap = current_gap(m, p, st.step_moves);
+    // The push-out of an overlap follows the soft spring (bias rate and mass scale), but
+    // the impulse is not relaxed towards zero as Box2D's soft contact does: that leak
+    // makes the overlap that holds a load F equal F / (m w^2), and with m the effective
+    // mass of a small block under a 200 m thick mass it sank a 3 m triangle 0.9 m into
+    // the bedrock (Vajont section VII stopped at 5.6-23 s; without it the run finishes).
+    double bias = 0.0, mass_scale = 1.0;
+    if (gap > 0.0) {
+      bias = gap * inv_h;  // speculative: may close the gap within the substep, not more
+    } else if (settings.use_bias) {
+      bias = std::max(settings.softness.bias_rate * std::min(0.0, gap + settings.linear_slop),
+                      -settings.max_pushout_speed);
+      mass_scale = settings.softness.mass_scale;
+    }
+    if (!settings.use_bias && gap < -m.deep_overlap) deep = 1;
+    const double vn = m.normal.dot(velocity_at(vb, p.rb) - velocity_at(va, p.ra));
+    const double change = -p.impulse.normal_mass * mass_scale * (vn + bias);
+    // Contact law: compression only, unless a bond holds tension (tension cut-off).
+    const double total = std::max(p.impulse.normal + change, -p.impulse.tension);
+    apply(va, vb, ma, mb, p, (total - p.impulse.normal) * m.normal);
+    p.impulse.normal = total;
+
+    // Friction: the Mohr-Coulomb cap, mu N (seed Eq. 2-3 for mu) plus cohesion while bonded.
+    const double cap = coulomb_cap(m.friction, p.impulse.normal, p.impulse.cohesion);
+    const double vt = m.tangent.dot(velocity_at(vb, p.rb) - velocity_at(va, p.ra));
+    const double tangent = std::clamp(p.impulse.tangent - p.impulse.tangent_mass * vt, -cap, cap);
+    apply(va, vb, ma, mb, p, (tangent - p.impulse.tangent) * m.tangent);
+    p.impulse.tangent = tangent;
+  }
+}
+
+// The manifolds flagged deep and every other manifold of their moving blocks, in order.
+std::vector<int> deep_neighbourhood(const std::vector<ContactManifold>& manifolds, const SweepState& st) {
+  std::vector<char> involved(st.velocity.size(), 0);
+  bool any = false;
+  for (int k = 0; k < static_cast<int>(st.deep.size()); ++k)
+    if (st.deep[k]) involved[manifolds[k].block_a] = involved[manifolds[k].block_b] = 1, any = true;
+  std::vector<int> list;
+  if (!any) return list;
+  for (int k = 0; k < static_cast<int>(manifolds.size()); ++k) {
+    const ContactManifold& m = manifolds[k];
+    if ((involved[m.block_a] && st.masses[m.block_a].moves) || (involved[m.block_b] && st.masses[m.block_b].moves))
+      list.push_back(k);
+  }
+  return list;
+}
+
+}  // namespace
+
 void solve_contacts(std::vector<ContactManifold>& manifolds, const std::vector<std::vector<int>>& colours,
                     const SweepSettings& settings, SweepState& st) {
   const double inv_h = 1.0 / settings.h;
-  for_each_coloured(colours, [&](int k) {
-    ContactManifold& m = manifolds[k];
-    Vec3& va = st.velocity[m.block_a];
-    Vec3& vb = st.velocity[m.block_b];
-    const BlockMass& ma = st.masses[m.block_a];
-    const BlockMass& mb = st.masses[m.block_b];
-    for (int q = 0; q < m.point_count; ++q) {
-      ContactPoint& p = m.points[q];
-      // Normal: the gap now, from the step's start and the blocks' moves since.
-      const double gap = current_gap(m, p, st.step_moves);
-      // The push-out of an overlap follows the soft spring (bias rate and mass scale), but
-      // the impulse is not relaxed towards zero as Box2D's soft contact does: that leak
-      // makes the overlap that holds a load F equal F / (m w^2), and with m the effective
-      // mass of a small block under a 200 m thick mass it sank a 3 m triangle 0.9 m into
-      // the bedrock (Vajont section VII stopped at 5.6-23 s; without it the run finishes).
-      double bias = 0.0, mass_scale = 1.0;
-      if (gap > 0.0) {
-        bias = gap * inv_h;  // speculative: may close the gap within the substep, not more
-      } else if (settings.use_bias) {
-        bias = std::max(settings.softness.bias_rate * std::min(0.0, gap + settings.linear_slop),
-                        -settings.max_pushout_speed);
-        mass_scale = settings.softness.mass_scale;
-      }
-      if (!settings.use_bias && gap < -m.deep_overlap) st.deep[k] = 1;
-      const double vn = m.normal.dot(velocity_at(vb, p.rb) - velocity_at(va, p.ra));
-      const double change = -p.impulse.normal_mass * mass_scale * (vn + bias);
-      // Contact law: compression only, unless a bond holds tension (tension cut-off).
-      const double total = std::max(p.impulse.normal + change, -p.impulse.tension);
-      apply(va, vb, ma, mb, p, (total - p.impulse.normal) * m.normal);
-      p.impulse.normal = total;
+  for_each_coloured(colours, [&](int k) { solve_manifold(manifolds[k], st.deep[k], settings, inv_h, st); });
+}
 
-      // Friction: the Mohr-Coulomb cap, mu N (seed Eq. 2-3 for mu) plus cohesion while bonded.
-      const double cap = coulomb_cap(m.friction, p.impulse.normal, p.impulse.cohesion);
-      const double vt = m.tangent.dot(velocity_at(vb, p.rb) - velocity_at(va, p.ra));
-      const double tangent = std::clamp(p.impulse.tangent - p.impulse.tangent_mass * vt, -cap, cap);
-      apply(va, vb, ma, mb, p, (tangent - p.impulse.tangent) * m.tangent);
-      p.impulse.tangent = tangent;
-    }
-  });
+void converge_deep(std::vector<ContactManifold>& manifolds, const SweepSettings& relax, int iterations,
+                   SweepState& st) {
+  const std::vector<int> list = deep_neighbourhood(manifolds, st);
+  if (list.empty()) return;
+  const double inv_h = 1.0 / relax.h;
+  char ignored = 0;
+  for (int it = 0; it < iterations; ++it)
+    for (const int k : list) solve_manifold(manifolds[k], ignored, relax, inv_h, st);
 }
 
 void correct_positions(const std::vector<ContactManifold>& manifolds, const PositionCorrection& settings,
                        SweepState& st) {
   // The deep manifolds and every other manifold of their blocks: a correction that moves a
   // block may push it into another neighbour, and that overlap is corrected in the same pass.
-  std::vector<char> moved(st.velocity.size(), 0);
-  bool any = false;
-  for (int k = 0; k < static_cast<int>(st.deep.size()); ++k)
-    if (st.deep[k]) moved[manifolds[k].block_a] = moved[manifolds[k].block_b] = 1, any = true;
-  if (!any) return;
-  std::vector<int> deep;
-  for (int k = 0; k < static_cast<int>(manifolds.size()); ++k) {
-    const ContactManifold& m = manifolds[k];
-    if ((moved[m.block_a] && st.masses[m.block_a].moves) || (moved[m.block_b] && st.masses[m.block_b].moves))
-      deep.push_back(k);
-  }
-  for (int pass = 0; pass < settings.passes; ++pass) {
+  const std::vector<int> deep = deep_neighbourhood(manifolds, st);
+  for (int pass = 0; pass < settings.passes && !deep.empty(); ++pass) {
     for (const int k : deep) {
       const ContactManifold& m = manifolds[k];
       BlockMass ma = st.masses[m.block_a], mb = st.masses[m.block_b];
