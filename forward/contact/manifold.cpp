@@ -28,9 +28,10 @@ struct Shape {
 };
 
 struct Axis {
-  int edge = -1;
-  double separation = -kInfinity;
-  bool flush_beside = false;  // "Flush neighbours" (manifold.hpp) holds for one of p's faces
+  int edge = -1;                   // the best axis that may be a reference face (long enough)
+  double separation = -kInfinity;  // its separation
+  double apart = -kInfinity;       // the best separation over every axis
+  bool flush_beside = false;       // "Flush neighbours" (manifold.hpp) holds for one of p's faces
 };
 
 // A polygon seen along a face of p from its first vertex p0: whether q, whose projections
@@ -38,6 +39,9 @@ struct Axis {
 // edge i grown over collinear neighbours (a straight vertex in a side must not make q look
 // beside half of it).
 bool beside_face(const Shape& p, int i, const Vec2& tangent, double lo, double hi, double flat);
+
+// The length of edge i of p grown over its collinear neighbours (grow_face).
+double face_length(const Shape& p, int i, double flat);
 
 // The edge of p whose normal separates q from p the most. p's own extent beyond the
 // edge along that normal is subtracted: it is zero for a convex polygon, but keeps the
@@ -68,21 +72,23 @@ Axis best_axis(const Shape& p, const Shape& q, double tiny, std::span<const char
       }
       if ((hi <= 0.0 || lo >= length) && beside_face(p, i, tangent, lo, hi, flat)) best.flush_beside = true;
     }
-    if (!(gap > best.separation)) continue;  // own >= 0 cannot make it better
+    if (!(gap > best.separation) && !(gap > best.apart)) continue;  // own >= 0 cannot make it better
     for (int k = 0; k < p.n; ++k) own = std::max(own, normal.dot(p.at(k) - p0));
-    if (gap - own > best.separation) {
+    const double separation = gap - own;
+    best.apart = std::max(best.apart, separation);
+    // A face shorter than eta (grown over collinear neighbours) is no reference face: the
+    // depth of a corner metres away, measured from the line of a 6 cm face, means nothing
+    // (a 2.5 cm and a 6 cm edge left where three joints met on Vajont section V read a
+    // small block 0.36 m "deep" in the notch of its neighbour). It still separates.
+    if (separation > best.separation && (length >= eta || face_length(p, i, flat) >= eta)) {
       best.edge = i;
-      best.separation = gap - own;
+      best.separation = separation;
     }
-    if (best.separation > apart) break;
+    if (best.apart > apart) break;
   }
   return best;
 }
 
-// Whether a cut of p (an edge marked not solid) has q wholly on its outer side, to within
-// `slop`: blocks tiled flush share vertices, and a neighbour touching a piece only at the end
-// of its cut lies exactly on the cut's line (Vajont sections V and VIII: the thin piece of a
-// pinched block then read the neighbour's side face 0.27-0.57 m "deep" through its cut).
 bool cut_separates(const Shape& p, const Shape& q, double tiny, std::span<const char> solid, double slop) {
   for (int i = 0; i < p.n && !solid.empty(); ++i) {
     if (solid[static_cast<size_t>(i)]) continue;
@@ -245,6 +251,11 @@ void clip_face_contact(const Shape& ref, const Face& rf, const Shape& inc, const
   m.incident_face = incf.first;
 }
 
+double face_length(const Shape& p, int i, double flat) {
+  const Face f = grow_face(p, i, flat);
+  return (p.at(f.last) - p.at(f.first)).norm();
+}
+
 bool beside_face(const Shape& p, int i, const Vec2& tangent, double lo, double hi, double flat) {
   const Face f = grow_face(p, i, flat);
   const Vec2 p0 = p.at(i);
@@ -274,10 +285,10 @@ Manifold collide_polygons(std::span<const Vec2> a, std::span<const Vec2> b, cons
   // contact on one half only: its tip sank 18 cm into the other half.
   const double eta = settings.flush_tolerance, flat = std::max(1e-3 * linear_slop, 0.25 * eta);
   const Axis axis_a = best_axis(sa, sb, tiny, a_solid, max_distance, eta, flat);
-  if (axis_a.separation > max_distance) return m;
+  if (axis_a.apart > max_distance) return m;
   const Axis axis_b = best_axis(sb, sa, tiny, b_solid, max_distance, eta, flat);
   if (axis_a.edge < 0 && axis_b.edge < 0) return m;
-  if (axis_b.separation > max_distance) return m;
+  if (axis_b.apart > max_distance) return m;
   const auto cut_in = [](std::span<const char> solid) {
     return std::find(solid.begin(), solid.end(), char{0}) != solid.end();
   };
@@ -324,7 +335,7 @@ Manifold collide_polygons(std::span<const Vec2> a, std::span<const Vec2> b, cons
 
   // Apart, corner facing corner: one point, normal along the line joining the corners.
   // The gap exceeds 0.1 x linear_slop here, so that line has a well-defined direction.
-  if (std::max(axis_a.separation, axis_b.separation) > 0.1 * linear_slop) {
+  if (std::max(axis_a.apart, axis_b.apart) > 0.1 * linear_slop) {
     const Ends ends = closest_ends(ref.at(rf.first), ref.at(rf.last), inc.at(incf.first), inc.at(incf.last));
     if (ends.on1 >= 0) {
       const int ref_vertex = ends.on1 == 1 ? rf.last : rf.first;
