@@ -76,6 +76,64 @@ int overriding_block(const BlockSystem& s, const ContactManifold& m, const Vec2&
 
 double block_size(const BlockSystem& s, int b) { return std::sqrt(std::abs(s.blocks[b].area)); }
 
+// One corner where two flush fixed blocks meet (a joint's end on the surface) touches a
+// block lying across the joint once, not twice: both blocks' manifolds with it put a point there,
+// with one normal. The later manifold's copy is dropped; a manifold left without points
+// goes. Two springs at one place doubled the implicit solver's stiffness where a block
+// landed on such a corner, and the landing threw it (docs/theory.md §3, Flush neighbours).
+void drop_shared_corners(const BlockSystem& s, std::vector<ContactManifold>& manifolds, double slop) {
+  // (free block, manifold) for the manifolds between a free and a fixed block, by block.
+  std::vector<std::pair<int, int>> on_fixed;
+  for (int k = 0; k < static_cast<int>(manifolds.size()); ++k) {
+    const ContactManifold& m = manifolds[k];
+    const bool fa = s.blocks[m.block_a].fixed, fb = s.blocks[m.block_b].fixed;
+    if (fa != fb) on_fixed.emplace_back(fa ? m.block_b : m.block_a, k);
+  }
+  std::sort(on_fixed.begin(), on_fixed.end());
+  constexpr double kSameNormal = 1e-6;  // 1 - cos of the angle between the two normals
+  bool dropped = false;
+  for (size_t i = 0; i < on_fixed.size(); ++i)
+    for (size_t j = i + 1; j < on_fixed.size() && on_fixed[j].first == on_fixed[i].first; ++j) {
+      const int b = on_fixed[i].first;
+      const ContactManifold& first = manifolds[on_fixed[i].second];
+      ContactManifold& second = manifolds[on_fixed[j].second];
+      if (first.block_a == second.block_a && first.block_b == second.block_b) continue;  // pieces of one pair
+      // Both normals seen from block b (pointing towards it).
+      const Vec2 n1 = first.block_b == b ? first.normal : Vec2(-first.normal);
+      const Vec2 n2 = second.block_b == b ? second.normal : Vec2(-second.normal);
+      if (n1.dot(n2) < 1.0 - kSameNormal) continue;
+      for (int p = 0; p < first.point_count; ++p)
+        for (int q = 0; q < second.point_count; ++q) {
+          if ((first.points[p].anchor - second.points[q].anchor).norm() > slop) continue;
+          second.points[q] = second.points[second.point_count - 1];
+          --second.point_count;
+          --q;
+          dropped = true;
+        }
+    }
+  if (dropped)
+    manifolds.erase(std::remove_if(manifolds.begin(), manifolds.end(),
+                                   [](const ContactManifold& m) { return m.point_count == 0; }),
+                    manifolds.end());
+}
+
+// Per block, the mean direction its touching contacts of the last step pushed it (from its
+// supports towards it), unit or zero: ManifoldSettings::support_a/b.
+std::vector<Vec2> supports(const BlockSystem& s, const std::vector<ContactManifold>& previous, double slop) {
+  std::vector<Vec2> push(s.blocks.size(), Vec2::Zero());
+  for (const ContactManifold& m : previous) {
+    int touching = 0;
+    for (int q = 0; q < m.point_count; ++q) touching += m.points[q].separation <= slop;
+    push[m.block_b] += touching * m.normal;
+    push[m.block_a] -= touching * m.normal;
+  }
+  for (Vec2& v : push) {
+    const double length = v.norm();
+    v = length > 0.0 ? Vec2(v / length) : Vec2::Zero();
+  }
+  return push;
+}
+
 }  // namespace
 
 const char* to_string(ContactState state) {
@@ -93,6 +151,7 @@ std::string collide(const BlockSystem& s, const ContactShapes& shapes, const std
   // that touch, in place (no full manifold per pair of boxes, no copy).
   const long n = static_cast<long>(pairs.size());
   geometry.resize(pairs.size());
+  const std::vector<Vec2> support = supports(s, contacts.manifolds, settings.linear_slop);
 #pragma omp parallel for schedule(static) if (n >= kParallelMinimum)
   for (long k = 0; k < n; ++k) {
     const auto [a, b] = pairs[k];
@@ -111,6 +170,8 @@ std::string collide(const BlockSystem& s, const ContactShapes& shapes, const std
     const double size = std::min(s.blocks[block_a].fixed ? 1e300 : block_size(s, block_a),
                                  s.blocks[block_b].fixed ? 1e300 : block_size(s, block_b));
     ms.flush_tolerance = settings.flush_ratio * size;
+    ms.support_a = support[block_a];
+    ms.support_b = support[block_b];
     geometry[k] = collide_polygons(std::span<const Vec2>(corners_a, na), std::span<const Vec2>(corners_b, nb), ms,
                                    solid.subspan(shapes.pieces[a].first, na), solid.subspan(shapes.pieces[b].first, nb));
   }
@@ -166,6 +227,7 @@ std::string collide(const BlockSystem& s, const ContactShapes& shapes, const std
         p.bonded = forms_bond(s.interfaces[out.interface], p.separation, settings.linear_slop);
     }
   }
+  drop_shared_corners(s, manifolds, settings.linear_slop);
   assign_histories(s, contacts);
   std::string problem;
   for (const ContactManifold& m : manifolds) {

@@ -32,13 +32,65 @@ struct Axis {
   double separation = -kInfinity;  // its separation
   double apart = -kInfinity;       // the best separation over every axis
   bool flush_beside = false;       // "Flush neighbours" (manifold.hpp) holds for one of p's faces
+  // "Flush faces" (manifold.hpp): of the faces of p whose line q lies against (its gap
+  // within eta on either side) without lying beside them, the best (flush_better); -1 if none.
+  int flush_edge = -1;
+  double flush_gap = kInfinity;
+  double flush_support = 0.0;  // how well its normal agrees with the pair's supports
 };
 
-// A polygon seen along a face of p from its first vertex p0: whether q, whose projections
-// onto the face's tangent from p0 span [lo, hi], lies wholly beside the face. The face is
-// edge i grown over collinear neighbours (a straight vertex in a side must not make q look
-// beside half of it).
-bool beside_face(const Shape& p, int i, const Vec2& tangent, double lo, double hi, double flat);
+// Flush faces are ranked by how well their normal (from p towards q) agrees with the way
+// the two blocks were held up in the last step (ManifoldSettings::support_*): a block that
+// rests on a surface meets the next block of it through its face, not its side, when its
+// corner crosses the joint. Only while both gaps are within kRideDepth x eta: a corner
+// deeper under a face has met a step, whose side is the contact (a block riding up a 2 mm
+// step under a 1.2 m block was kicked off it by the implicit solver's penalty spring).
+// Otherwise, and within kSupportTie of each other, the face q lies closer to the line of
+// (least |gap|).
+constexpr double kSupportTie = 0.05;
+constexpr double kRideDepth = 0.1;
+bool flush_better(double support, double gap, double than_support, double than_gap, double eta, double slop) {
+  const bool shallow = std::max(std::abs(gap), std::abs(than_gap)) <= kRideDepth * eta;
+  if (shallow && std::abs(support - than_support) > kSupportTie) return support > than_support;
+  return std::abs(gap) + slop < std::abs(than_gap);
+}
+
+// A face: the run of edges from vertex `first` to vertex `last` (counter-clockwise).
+struct Face {
+  int first = 0;
+  int last = 0;
+};
+
+// Grows an edge over its neighbours while they continue its line within `flat`. Without
+// this a straight vertex in the middle of a side would make the reference face half a
+// side, and a block resting on that side would be held at one half only.
+Face grow_face(const Shape& p, int edge, double flat) {
+  const Vec2 p0 = p.at(edge), t = (p.at(edge + 1) - p0).normalized();
+  const auto on_line = [&](int from, int to, int test) {
+    return std::abs(cross(t, p.at(test) - p0)) <= flat && t.dot(p.at(to) - p.at(from)) > 0.0;
+  };
+  Face f{edge, (edge + 1) % p.n};
+  // Leave at least two edges outside the face: beyond that the polygon has no area.
+  for (int edges = 1; edges < p.n - 2; ++edges) {
+    const int before = (f.first + p.n - 1) % p.n, after = (f.last + 1) % p.n;
+    if (on_line(before, f.first, before)) {
+      f.first = before;
+    } else if (on_line(f.last, after, after)) {
+      f.last = after;
+    } else {
+      break;
+    }
+  }
+  return f;
+}
+
+// The span along a face's line of the part of q within eta of the line, or below it:
+// q clipped to the band h <= eta, h = normal . (x - p0). Its vertices in the band and
+// the points where its edges leave the band, projected on the tangent from p0.
+struct Span {
+  double lo, hi;
+};
+Span near_line_span(const Shape& q, const Vec2& p0, const Vec2& normal, const Vec2& tangent, double eta);
 
 // The length of edge i of p grown over its collinear neighbours (grow_face).
 double face_length(const Shape& p, int i, double flat);
@@ -46,13 +98,23 @@ double face_length(const Shape& p, int i, double flat);
 // The edge of p whose normal separates q from p the most. p's own extent beyond the
 // edge along that normal is subtracted: it is zero for a convex polygon, but keeps the
 // value a true lower bound of the gap if a nearly straight vertex leaves a tiny edge
-// whose normal points anywhere.
-// Stops early once the separation passes `apart` (no contact then; the caller only needs
-// to know that). With eta > 0 it also tells whether q lies against one of p's faces (its
-// gap within eta on either side) but wholly beside it (Flush neighbours): the gap is at
-// hand, and only such faces need q's extent along them.
-Axis best_axis(const Shape& p, const Shape& q, double tiny, std::span<const char> solid, double apart, double eta,
-               double flat) {
+// whose normal points anywhere. Stops early once the separation passes `apart` (no
+// contact then; the caller only needs to know that).
+// With eta > 0 it also reads the faces q lies against (its gap within eta on either
+// side; manifold.hpp, "Flush neighbours" and "Flush faces"): the gap is at hand, and only
+// such faces need q's span along them.
+struct AxisLimits {
+  double tiny = 0.0;   // an edge shorter than this has no direction
+  double apart = 0.0;  // the margin beyond which there is no contact
+  double eta = 0.0;    // the flush tolerance
+  double flat = 0.0;   // a face's straightness (grow_face)
+  // The supports of p's and q's blocks (ManifoldSettings::support_a/b): a normal from p
+  // towards q agrees with q's support, or against p's.
+  Vec2 support_p = Vec2::Zero(), support_q = Vec2::Zero();
+};
+
+Axis best_axis(const Shape& p, std::span<const char> solid, const Shape& q, const AxisLimits& limits) {
+  const double tiny = limits.tiny, apart = limits.apart, eta = limits.eta, flat = limits.flat;
   Axis best;
   for (int i = 0; i < p.n; ++i) {
     if (!solid.empty() && !solid[static_cast<size_t>(i)]) continue;
@@ -62,15 +124,23 @@ Axis best_axis(const Shape& p, const Shape& q, double tiny, std::span<const char
     const Vec2 normal = outward(edge) / length;
     double own = 0.0, gap = kInfinity;
     for (int k = 0; k < q.n; ++k) gap = std::min(gap, normal.dot(q.at(k) - p0));
-    if (!best.flush_beside && std::abs(gap) <= eta) {
+    if (eta > 0.0 && std::abs(gap) <= eta) {
+      // q lies against the face's line: beside the face (its part near the line does not
+      // reach along the face), or on it.
       const Vec2 tangent = edge / length;
-      double lo = kInfinity, hi = -kInfinity;
-      for (int k = 0; k < q.n; ++k) {
-        const double u = tangent.dot(q.at(k) - p0);
-        lo = std::min(lo, u);
-        hi = std::max(hi, u);
+      const Face f = grow_face(p, i, flat);
+      const double from = tangent.dot(p.at(f.first) - p0), to = tangent.dot(p.at(f.last) - p0);
+      const Span near = near_line_span(q, p0, normal, tangent, eta);
+      if (std::min(near.hi, to) - std::max(near.lo, from) <= 0.0) {
+        best.flush_beside = true;
+        break;
       }
-      if ((hi <= 0.0 || lo >= length) && beside_face(p, i, tangent, lo, hi, flat)) best.flush_beside = true;
+      const double support = std::max(normal.dot(limits.support_q), -normal.dot(limits.support_p));
+      if (to - from >= eta && (best.flush_edge < 0 || flush_better(support, gap, best.flush_support, best.flush_gap, eta, 0.0))) {
+        best.flush_edge = i;
+        best.flush_gap = gap;
+        best.flush_support = support;
+      }
     }
     if (!(gap > best.separation) && !(gap > best.apart)) continue;  // own >= 0 cannot make it better
     for (int k = 0; k < p.n; ++k) own = std::max(own, normal.dot(p.at(k) - p0));
@@ -101,35 +171,6 @@ bool cut_separates(const Shape& p, const Shape& q, double tiny, std::span<const 
     if (gap > -slop) return true;
   }
   return false;
-}
-
-// A face: the run of edges from vertex `first` to vertex `last` (counter-clockwise).
-struct Face {
-  int first = 0;
-  int last = 0;
-};
-
-// Grows an edge over its neighbours while they continue its line within `flat`. Without
-// this a straight vertex in the middle of a side would make the reference face half a
-// side, and a block resting on that side would be held at one half only.
-Face grow_face(const Shape& p, int edge, double flat) {
-  const Vec2 p0 = p.at(edge), t = (p.at(edge + 1) - p0).normalized();
-  const auto on_line = [&](int from, int to, int test) {
-    return std::abs(cross(t, p.at(test) - p0)) <= flat && t.dot(p.at(to) - p.at(from)) > 0.0;
-  };
-  Face f{edge, (edge + 1) % p.n};
-  // Leave at least two edges outside the face: beyond that the polygon has no area.
-  for (int edges = 1; edges < p.n - 2; ++edges) {
-    const int before = (f.first + p.n - 1) % p.n, after = (f.last + 1) % p.n;
-    if (on_line(before, f.first, before)) {
-      f.first = before;
-    } else if (on_line(f.last, after, after)) {
-      f.last = after;
-    } else {
-      break;
-    }
-  }
-  return f;
 }
 
 // The edge of `inc` facing the direction `normal` (unit) the most, among its solid edges:
@@ -256,11 +297,20 @@ double face_length(const Shape& p, int i, double flat) {
   return (p.at(f.last) - p.at(f.first)).norm();
 }
 
-bool beside_face(const Shape& p, int i, const Vec2& tangent, double lo, double hi, double flat) {
-  const Face f = grow_face(p, i, flat);
-  const Vec2 p0 = p.at(i);
-  const double from = (p.at(f.first) - p0).dot(tangent), to = (p.at(f.last) - p0).dot(tangent);
-  return hi <= from || lo >= to;
+Span near_line_span(const Shape& q, const Vec2& p0, const Vec2& normal, const Vec2& tangent, double eta) {
+  Span span{kInfinity, -kInfinity};
+  const auto add = [&](const Vec2& x) {
+    const double u = tangent.dot(x);
+    span.lo = std::min(span.lo, u);
+    span.hi = std::max(span.hi, u);
+  };
+  for (int k = 0; k < q.n; ++k) {
+    const Vec2 x0 = q.at(k) - p0, x1 = q.at(k + 1) - p0;
+    const double h0 = normal.dot(x0) - eta, h1 = normal.dot(x1) - eta;
+    if (h0 <= 0.0) add(x0);
+    if ((h0 < 0.0) != (h1 < 0.0) && h0 != h1) add(x0 + (h0 / (h0 - h1)) * (x1 - x0));
+  }
+  return span;
 }
 
 }  // namespace
@@ -284,9 +334,9 @@ Manifold collide_polygons(std::span<const Vec2> a, std::span<const Vec2> b, cons
   // blocks (where joints met a side), and a face split there gave a sliver lying along it
   // contact on one half only: its tip sank 18 cm into the other half.
   const double eta = settings.flush_tolerance, flat = std::max(1e-3 * linear_slop, 0.25 * eta);
-  const Axis axis_a = best_axis(sa, sb, tiny, a_solid, max_distance, eta, flat);
+  const Axis axis_a = best_axis(sa, a_solid, sb, {tiny, max_distance, eta, flat, settings.support_a, settings.support_b});
   if (axis_a.apart > max_distance) return m;
-  const Axis axis_b = best_axis(sb, sa, tiny, b_solid, max_distance, eta, flat);
+  const Axis axis_b = best_axis(sb, b_solid, sa, {tiny, max_distance, eta, flat, settings.support_b, settings.support_a});
   if (axis_a.edge < 0 && axis_b.edge < 0) return m;
   if (axis_b.apart > max_distance) return m;
   const auto cut_in = [](std::span<const char> solid) {
@@ -305,12 +355,21 @@ Manifold collide_polygons(std::span<const Vec2> a, std::span<const Vec2> b, cons
   // Flush neighbours: two polygons along one surface line touch only at a corner sliver.
   if (axis_a.flush_beside || axis_b.flush_beside) return m;
 
-  // Reference polygon: a unless b's axis is clearly better, so that two equally good
-  // axes do not swap the reference (and the point ids) from one call to the next.
-  bool flip = axis_a.edge < 0 || (axis_b.edge >= 0 && axis_b.separation > axis_a.separation + 0.1 * linear_slop);
+  // Flush faces (manifold.hpp): a polygon lying against the line of a face (within eta),
+  // not beside it, touches that face, whatever the separating axis says; of two such
+  // faces, the one whose line it lies closer to (least |gap|). The reference polygon
+  // otherwise: a unless b's axis is clearly better, so that two equally good axes do not
+  // swap the reference (and the point ids) from one call to the next.
+  const bool flush_face = axis_a.flush_edge >= 0 || axis_b.flush_edge >= 0;
+  const int edge_a = flush_face ? axis_a.flush_edge : axis_a.edge;
+  const int edge_b = flush_face ? axis_b.flush_edge : axis_b.edge;
+  const bool better_b = flush_face ? axis_b.flush_edge >= 0 &&
+                                         flush_better(axis_b.flush_support, axis_b.flush_gap, axis_a.flush_support,
+                                                      axis_a.flush_gap, eta, 0.1 * linear_slop)
+                                   : axis_b.separation > axis_a.separation + 0.1 * linear_slop;
+  bool flip = edge_a < 0 || (edge_b >= 0 && better_b);
   const auto incident_for = [&](bool f) {
-    return incident_edge(f ? sa : sb, f ? a_solid : b_solid,
-                         face_normal(f ? sb : sa, f ? axis_b.edge : axis_a.edge, flat), tiny);
+    return incident_edge(f ? sa : sb, f ? a_solid : b_solid, face_normal(f ? sb : sa, f ? edge_b : edge_a, flat), tiny);
   };
   Incident incident = incident_for(flip);
   if (incident.edge < 0) return m;
@@ -322,7 +381,7 @@ Manifold collide_polygons(std::span<const Vec2> a, std::span<const Vec2> b, cons
   // read the opposite bank's face as turned away from it, got no point, and went into the
   // bank (the first axis was its own face; the bank piece's side facing it was a cut).
   if (settings.flip_for_cuts && incident.facing > 0.0) {
-    if ((flip ? axis_a.edge : axis_b.edge) < 0) return m;
+    if ((flip ? edge_a : edge_b) < 0) return m;
     flip = !flip;
     incident = incident_for(flip);
     if (incident.edge < 0 || incident.facing > 0.0) return m;
@@ -330,12 +389,14 @@ Manifold collide_polygons(std::span<const Vec2> a, std::span<const Vec2> b, cons
   const Shape& ref = flip ? sb : sa;
   const Shape& inc = flip ? sa : sb;
   const int ref_owner = flip ? 1 : 0, inc_owner = 1 - ref_owner;
-  const Face rf = grow_face(ref, flip ? axis_b.edge : axis_a.edge, flat);
+  const Face rf = grow_face(ref, flip ? edge_b : edge_a, flat);
   const Face incf = grow_face(inc, incident.edge, flat);
 
   // Apart, corner facing corner: one point, normal along the line joining the corners.
   // The gap exceeds 0.1 x linear_slop here, so that line has a well-defined direction.
-  if (std::max(axis_a.apart, axis_b.apart) > 0.1 * linear_slop) {
+  // Not against a flush face: a corner arriving at the joint of a concave kink heads
+  // straight at the next block's corner, and the line joining them points back.
+  if (!flush_face && std::max(axis_a.apart, axis_b.apart) > 0.1 * linear_slop) {
     const Ends ends = closest_ends(ref.at(rf.first), ref.at(rf.last), inc.at(incf.first), inc.at(incf.last));
     if (ends.on1 >= 0) {
       const int ref_vertex = ends.on1 == 1 ? rf.last : rf.first;
