@@ -17,8 +17,8 @@
 namespace ddafit {
 
 // The flush tolerance eta of manifold.hpp as a fraction of the smaller free block's size
-// (the square root of its area). A step between two faces smaller than this is smoothed
-// over; a larger one is a step. Twice the largest overlap the solvers allow (1 % of the
+// (the square root of its area). Two polygons along one line within this get the flush
+// rules (manifold.hpp); a step higher than this is always a step. Twice the largest overlap the solvers allow (1 % of the
 // smaller block: an overlap that deep must not turn a flush joint into a step), and below
 // the 5 % of a 5 cm step under a 1 m block, which must stop a block arriving at 2 m/s
 // (test_joint_crossing.cpp).

@@ -77,7 +77,8 @@ struct ManifoldSettings {
 //
 // Flush neighbours (the internal-edge or "ghost collision" rule). When one polygon lies
 // against the line of a face T of the other -- its deepest point within eta = flush_tolerance
-// of T's line, on either side -- but wholly beside T along that line, the two are neighbours
+// of T's line, on either side -- and its part within eta of that line lies wholly beside T
+// along the line, the two are neighbours
 // along one surface: they can only overlap in a corner sliver no deeper and no longer than
 // eta, and the manifold is empty. This is what lets a block slide across a joint between
 // two blocks whose faces are flush (the slope surface, a row of blocks): before it crosses,
@@ -94,6 +95,14 @@ struct ManifoldSettings {
 // slider's face. (Box2D's smooth segments reach the same answer with each segment's
 // neighbours, its ghost vertices; Shi's entrance rule would take the joint face, since the
 // slider's corner, below the surface by its overlap, crosses the joint's line first.)
+//
+// Flush faces: a polygon against the line of a face it is not beside (its corner has crossed
+// the joint, or heads for it at a concave kink) touches that face: it is the reference face,
+// and there is no corner-on-corner point, whose normal pointed back at such a joint. Of
+// several such faces, the one whose normal (from its polygon towards the other) agrees best
+// with the supports of the last step (support_a, support_b: a block resting on a surface
+// meets the next block of it through its face), while both corners lie within eta / 10 of
+// their lines; else the one the polygon lies closer to the line of.
 //
 // Solid edges: a convex piece of a concave block has edges that run inside the block
 // (the cuts of its decomposition). Such an edge is no face: a neighbour can only be
