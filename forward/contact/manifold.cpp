@@ -108,6 +108,7 @@ struct AxisLimits {
   double apart = 0.0;  // the margin beyond which there is no contact
   double eta = 0.0;    // the flush tolerance
   double flat = 0.0;   // a face's straightness (grow_face)
+  bool flush_faces = true;  // ManifoldSettings::flush_faces
   // The supports of p's and q's blocks (ManifoldSettings::support_a/b): a normal from p
   // towards q agrees with q's support, or against p's.
   Vec2 support_p = Vec2::Zero(), support_q = Vec2::Zero();
@@ -130,7 +131,7 @@ Axis best_axis(const Shape& p, std::span<const char> solid, const Shape& q, cons
       const Vec2 tangent = edge / length;
       const Face f = grow_face(p, i, flat);
       const double from = tangent.dot(p.at(f.first) - p0), to = tangent.dot(p.at(f.last) - p0);
-      const Span near = near_line_span(q, p0, normal, tangent, eta);
+      const Span near = near_line_span(q, p0, normal, tangent, limits.flush_faces ? eta : kInfinity);
       if (std::min(near.hi, to) - std::max(near.lo, from) <= 0.0) {
         best.flush_beside = true;
         break;
@@ -139,7 +140,7 @@ Axis best_axis(const Shape& p, std::span<const char> solid, const Shape& q, cons
       // Only a face the polygon lies close against (a tenth of eta): in a packed mass many
       // blocks lie within eta of a neighbour's face line, and overriding the separating axis
       // for all of them let Vajont section IV overlap by 1 % of a block.
-      if (to - from >= eta && std::abs(gap) <= kRideDepth * eta &&
+      if (limits.flush_faces && to - from >= eta && std::abs(gap) <= kRideDepth * eta &&
           (best.flush_edge < 0 || flush_better(support, gap, best.flush_support, best.flush_gap, eta, 0.0))) {
         best.flush_edge = i;
         best.flush_gap = gap;
@@ -338,9 +339,9 @@ Manifold collide_polygons(std::span<const Vec2> a, std::span<const Vec2> b, cons
   // blocks (where joints met a side), and a face split there gave a sliver lying along it
   // contact on one half only: its tip sank 18 cm into the other half.
   const double eta = settings.flush_tolerance, flat = std::max(1e-3 * linear_slop, 0.25 * eta);
-  const Axis axis_a = best_axis(sa, a_solid, sb, {tiny, max_distance, eta, flat, settings.support_a, settings.support_b});
+  const Axis axis_a = best_axis(sa, a_solid, sb, {tiny, max_distance, eta, flat, settings.flush_faces, settings.support_a, settings.support_b});
   if (axis_a.apart > max_distance) return m;
-  const Axis axis_b = best_axis(sb, b_solid, sa, {tiny, max_distance, eta, flat, settings.support_b, settings.support_a});
+  const Axis axis_b = best_axis(sb, b_solid, sa, {tiny, max_distance, eta, flat, settings.flush_faces, settings.support_b, settings.support_a});
   if (axis_a.edge < 0 && axis_b.edge < 0) return m;
   if (axis_b.apart > max_distance) return m;
   const auto cut_in = [](std::span<const char> solid) {
