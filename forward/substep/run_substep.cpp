@@ -52,7 +52,7 @@ constexpr double kQuietStartTolerance = 1e-4;
 // and the largest correction per point and pass as a share of the largest move allowed per step.
 // Eight passes of up to half a move: with three of a fifth, a light block jammed between
 // heavy ones kept 1.9 % of its size (Vajont IV degraded) and 1.0 % (V); with eight of a half,
-// 0.47 % and 0.59 %. The passes run only where a point is deep.
+// 0.47 % and 0.59 %. The passes run only where a relax sweep found a point deep.
 constexpr int kCorrectionPasses = 8;
 constexpr double kCorrectionFraction = 0.8;
 constexpr double kDeepOverlap = 0.004;

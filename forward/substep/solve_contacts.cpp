@@ -144,14 +144,6 @@ void converge_deep(std::vector<ContactManifold>& manifolds, const SweepSettings&
 
 void correct_positions(const std::vector<ContactManifold>& manifolds, const PositionCorrection& settings,
                        SweepState& st) {
-  // A manifold overlapping beyond its deep_overlap now, after the substeps, is deep too,
-  // whether or not a relax sweep saw it so (the last sweep's impulses can leave a point
-  // deeper than any sweep measured).
-  for (int k = 0; k < static_cast<int>(manifolds.size()); ++k) {
-    const ContactManifold& m = manifolds[k];
-    for (int q = 0; q < m.point_count && !st.deep[k]; ++q)
-      if (current_gap(m, m.points[q], st.step_moves) < -m.deep_overlap) st.deep[k] = 1;
-  }
   // The deep manifolds and every other manifold of their blocks: a correction that moves a
   // block may push it into another neighbour, and that overlap is corrected in the same pass.
   const std::vector<int> deep = deep_neighbourhood(manifolds, st);
