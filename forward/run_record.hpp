@@ -5,7 +5,7 @@
 #include <chrono>
 
 #include "forward/contact/overlap.hpp"
-#include "forward/simulation.hpp"
+#include "forward/run_summary.hpp"
 
 namespace ddafit {
 

@@ -16,7 +16,7 @@
 
 #include "forward/geometry.hpp"
 #include "forward/simulation.hpp"
-#include "forward/step/energy_check.hpp"
+#include "forward/common/energy_check.hpp"
 #include "verify/cases.hpp"
 
 namespace ddafit {

@@ -1,5 +1,5 @@
 // The check that stops a run when a free block has passed into a fixed one
-// (forward/step/containment_check.hpp): the failure neither the energy audit nor the
+// (forward/common/containment_check.hpp): the failure neither the energy audit nor the
 // overlap check can see, since the lost block has no contact left.
 #include <gtest/gtest.h>
 
@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "forward/block_system.hpp"
-#include "forward/step/containment_check.hpp"
+#include "forward/common/containment_check.hpp"
 #include "verify/cases.hpp"
 
 namespace ddafit {

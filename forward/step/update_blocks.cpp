@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "forward/common/displace_block.hpp"
 #include "forward/contact/contact_law.hpp"
 #include "forward/contact/slip_history.hpp"
 #include "forward/step/assemble.hpp"
@@ -10,35 +11,12 @@
 
 namespace ddafit {
 
-double block_displacement(const BlockSystem& s, int b, const Vec6& db) {
-  const Block& block = s.blocks[b];
-  double largest = 0.0;
-  for (int v = block.first_vertex; v < block.first_vertex + block.vertex_count; ++v)
-    largest = std::max(largest, exact_point_displacement(s.vertices[v], block.centroid, db).norm());
-  return largest;
-}
-
 double max_vertex_displacement(const BlockSystem& s, const Eigen::VectorXd& d) {
   double largest = 0.0;
   for (int b = 0; b < static_cast<int>(s.blocks.size()); ++b)
     if (s.blocks[b].unknown >= 0)
       largest = std::max(largest, block_displacement(s, b, d.segment<6>(6 * s.blocks[b].unknown)));
   return largest;
-}
-
-void displace_block(BlockSystem& s, int b, const Vec6& db, bool measured) {
-  Block& block = s.blocks[b];
-  for (int v = block.first_vertex; v < block.first_vertex + block.vertex_count; ++v)
-    s.vertices[v] += exact_point_displacement(s.vertices[v], block.centroid, db);
-  // Material points move with the same map, before the centroid is refreshed.
-  for (MaterialPoint& p : s.points) {
-    if (p.block != b) continue;
-    const Vec2 shift = exact_point_displacement(p.position, block.centroid, db);
-    p.position += shift;
-    if (!measured) p.initial_position += shift;
-  }
-  block.stress += s.elastic[block.material] * db.segment<3>(3);
-  refresh_block_geometry(s, b);
 }
 
 double max_penetration(const ContactSet& contacts, const StepParameters& step, double limit, double hard_limit,

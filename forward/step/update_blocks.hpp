@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "forward/block_system.hpp"
+#include "forward/common/displace_block.hpp"
 #include "forward/contact/contact_types.hpp"
 #include "forward/step/check_contacts.hpp"
 #include "forward/step/assemble.hpp"
@@ -14,14 +15,6 @@ namespace ddafit {
 
 // Largest displacement of any vertex over the step for the solved unknowns d.
 double max_vertex_displacement(const BlockSystem& system, const Eigen::VectorXd& d);
-
-// Largest displacement of a vertex of block b for its unknowns db.
-double block_displacement(const BlockSystem& system, int b, const Vec6& db);
-
-// Moves block b and its material points by db (exact rotation), adds the strain's
-// stress and refreshes the block's geometry. When the motion is not part of the
-// measured history (settling), the points' origins move with them.
-void displace_block(BlockSystem& system, int b, const Vec6& db, bool measured);
 
 // Deepest penetration (> 0) among closed contacts that the step made deeper, and which
 // contact it is. Depth counts from where the spring is unloaded (spring_reference), so

@@ -4,7 +4,7 @@
 #include <Eigen/LU>
 #include <algorithm>
 
-#include "forward/step/update_blocks.hpp"
+#include "forward/common/displace_block.hpp"
 
 namespace ddafit {
 namespace {

@@ -1,7 +1,7 @@
 #include "forward/substep/integrate.hpp"
 #include "forward/parallel.hpp"
 
-#include "forward/step/update_blocks.hpp"
+#include "forward/common/displace_block.hpp"
 
 namespace ddafit {
 

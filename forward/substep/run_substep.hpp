@@ -9,7 +9,7 @@
 
 #include "forward/block_system.hpp"
 #include "forward/run_record.hpp"
-#include "forward/simulation.hpp"
+#include "forward/run_summary.hpp"
 
 namespace ddafit {
 

@@ -1,4 +1,4 @@
-#include "forward/step/containment_check.hpp"
+#include "forward/common/containment_check.hpp"
 
 #include <Eigen/Geometry>
 #include <span>

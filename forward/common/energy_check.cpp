@@ -1,4 +1,4 @@
-#include "forward/step/energy_check.hpp"
+#include "forward/common/energy_check.hpp"
 
 #include <algorithm>
 #include <cmath>

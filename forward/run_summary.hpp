@@ -1,0 +1,94 @@
+// What a forward run gives back and who may watch it: the history rows, the per-point
+// extremes, the counters and solver report of summary.json, the run's status (failure is a
+// value), and the optional hooks. Below both solvers and the run recorder, which fill it;
+// forward/simulation.hpp, the one call above them, returns it.
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "forward/block_system.hpp"
+#include "forward/scene.hpp"
+#include "forward/step_profile.hpp"
+
+namespace ddafit {
+
+struct HistoryRow {
+  double time = 0.0;
+  int point = 0;  // index into Scene::measure
+  Vec2 position = Vec2::Zero();
+  Vec2 displacement = Vec2::Zero();  // since t = 0
+  Vec2 velocity = Vec2::Zero();
+};
+
+struct PointSummary {
+  std::string name;
+  double max_lateral_displacement = 0.0;  // max |u_x|, m
+  double max_total_displacement = 0.0;    // max |u|, m
+  double peak_lateral_velocity = 0.0;     // max |v_x|, m/s
+  double peak_total_velocity = 0.0;       // max |v|, m/s
+  double duration = 0.0;  // last time the point's speed was >= rest_speed, s
+  bool stopped = false;   // speed below rest_speed at the end of the run
+};
+
+struct RunCounters {
+  long steps = 0;
+  long open_close_iterations = 0;
+  long step_cuts = 0;       // steps redone with a shorter time step
+  long penalty_raises = 0;  // steps redone with a stiffer penalty
+  long unsettled_contacts = 0;  // contact-steps accepted while still changing state
+  long symbolic_analyses = 0;   // sparse orderings: the contact graph changed
+  long factorizations = 0;      // Cholesky factorisations (one per open-close pass unless CG)
+  long cg_solves = 0;           // passes solved by CG on an older factor (reuse_factorization)
+  double final_penalty = 0.0;
+  double smallest_step = 0.0;
+  double largest_step = 0.0;
+  double simulated_time = 0.0;
+};
+
+// Which solver ran, why, and what the substep solver measured of its contacts.
+struct SolverReport {
+  Integrator integrator = Integrator::Implicit;  // the one that ran (never Auto)
+  std::string reason;                            // why: the scene's choice or the Auto rule
+  int substeps = 0;                              // per step (substep solver)
+  long contact_points = 0;                       // summed over steps (mean = / steps)
+  double worst_penetration = 0.0;                // m, deepest overlap at the end of a step
+  double worst_penetration_ratio = 0.0;          // that depth / the smaller block's size
+  double worst_penetration_time = 0.0;           // s
+  std::string worst_penetration_at;              // the two blocks
+  long unconverged_points = 0;  // point-steps still closing faster than the tolerance after the last sweep
+  long fast_steps = 0;          // steps in which a block moved further than the contact margin allows
+};
+
+// Interrupted: the caller asked the run to stop (SimulationHooks::should_stop) before the
+// end; the history and extremes up to that time are kept.
+enum class RunStatus { Completed, InvalidScene, Failed, Interrupted };
+
+struct SimulationSummary {
+  RunStatus status = RunStatus::Completed;
+  std::string message;  // the diagnosis when status != Completed
+  std::vector<std::string> warnings;  // settings known to degrade results (docs/theory.md)
+  std::vector<PointSummary> points;
+  RunCounters run;
+  StepProfile profile;
+  SolverReport solver;
+};
+
+struct SimulationResult {
+  SimulationSummary summary;
+  std::vector<HistoryRow> history;
+};
+
+// Optional observers of a run. None of them may throw.
+struct SimulationHooks {
+  // Called at every output time (t = 0, each output interval, and the end).
+  std::function<void(double time, const BlockSystem& system)> on_output;
+  // Called about once per second of wall time with the simulated time reached.
+  std::function<void(double time, double duration)> on_progress;
+  // Asked once per step; true stops the run there with status Interrupted (the command
+  // line sets it on SIGINT and SIGTERM).
+  std::function<bool()> should_stop;
+};
+
+}  // namespace ddafit
