@@ -32,6 +32,33 @@ struct PointSummary {
   bool stopped = false;   // speed below rest_speed at the end of the run
 };
 
+// The per-point results, one row each: the name summary.json and a study's observations
+// use, the unit, and how to read and write the PointSummary field (`stopped` as 1 or 0;
+// `flag` says it is written as true/false). Every list of the quantities (summary.json, the
+// run codec, the evaluation cache, a study's allowed names) iterates this table.
+struct PointQuantity {
+  const char* name;
+  const char* unit;
+  bool flag;
+  double (*get)(const PointSummary&);
+  void (*set)(PointSummary&, double);
+};
+
+inline constexpr PointQuantity kPointQuantities[] = {
+    {"max_lateral_displacement", "m", false, [](const PointSummary& p) { return p.max_lateral_displacement; },
+     [](PointSummary& p, double v) { p.max_lateral_displacement = v; }},
+    {"max_total_displacement", "m", false, [](const PointSummary& p) { return p.max_total_displacement; },
+     [](PointSummary& p, double v) { p.max_total_displacement = v; }},
+    {"peak_lateral_velocity", "m/s", false, [](const PointSummary& p) { return p.peak_lateral_velocity; },
+     [](PointSummary& p, double v) { p.peak_lateral_velocity = v; }},
+    {"peak_total_velocity", "m/s", false, [](const PointSummary& p) { return p.peak_total_velocity; },
+     [](PointSummary& p, double v) { p.peak_total_velocity = v; }},
+    {"duration", "s", false, [](const PointSummary& p) { return p.duration; },
+     [](PointSummary& p, double v) { p.duration = v; }},
+    {"stopped", "", true, [](const PointSummary& p) { return p.stopped ? 1.0 : 0.0; },
+     [](PointSummary& p, double v) { p.stopped = v != 0.0; }},
+};
+
 struct RunCounters {
   long steps = 0;
   long open_close_iterations = 0;

@@ -5,7 +5,27 @@
 #include <cmath>
 #include <numeric>
 
+#include <cholmod.h>
+
 namespace ddafit {
+
+struct SparseSolver::Backend {
+  cholmod_common common;
+  cholmod_factor* factor = nullptr;
+  Eigen::VectorXd last_solution;
+  double factor_seconds = 0.0;     // wall time of the last factorisation
+  double iteration_seconds = 0.0;  // running mean wall time of one CG iteration
+  std::vector<int> pattern_columns;
+  std::vector<int> pattern_rows;
+};
+
+namespace {
+
+bool refactorize(SparseSolver::Backend& be, SolverCounters& counters, cholmod_sparse* a, int n, std::string& reason);
+bool preconditioned_cg(SparseSolver::Backend& be, const SolverOptions& options, cholmod_sparse* a,
+                       const Eigen::VectorXd& rhs, Eigen::VectorXd& x, int& iterations);
+
+}  // namespace
 
 void BlockSparseMatrix::reset(int free_blocks) {
   size = free_blocks;
@@ -34,19 +54,20 @@ void BlockSparseMatrix::add(int a, int b, const Mat6& m) {
     off_diagonal[it->second] += m;
 }
 
-SparseSolver::SparseSolver(const SolverOptions& options) : options_(options) {
-  cholmod_start(&common_);
-  common_.print = 0;
-  common_.error_handler = nullptr;
+SparseSolver::SparseSolver(const SolverOptions& options) : options_(options), backend_(std::make_unique<Backend>()) {
+  cholmod_start(&backend_->common);
+  backend_->common.print = 0;
+  backend_->common.error_handler = nullptr;
 }
 
 SparseSolver::~SparseSolver() {
-  if (factor_) cholmod_free_factor(&factor_, &common_);
-  cholmod_finish(&common_);
+  if (backend_->factor) cholmod_free_factor(&backend_->factor, &backend_->common);
+  cholmod_finish(&backend_->common);
 }
 
 bool SparseSolver::solve(const BlockSparseMatrix& k, const Eigen::VectorXd& rhs, Eigen::VectorXd& x,
                          std::string& reason) {
+  Backend& be = *backend_;
   const int nb = k.size;
   const int n = 6 * nb;
   if (n == 0) {
@@ -66,7 +87,7 @@ bool SparseSolver::solve(const BlockSparseMatrix& k, const Eigen::VectorXd& rhs,
   for (int b = 0; b < nb; ++b) column_start[b + 1] += column_start[b];
 
   const size_t nnz = 36 * k.pairs.size() + 21 * static_cast<size_t>(nb);
-  cholmod_sparse* a = cholmod_allocate_sparse(n, n, nnz, 1, 1, 1, CHOLMOD_REAL, &common_);
+  cholmod_sparse* a = cholmod_allocate_sparse(n, n, nnz, 1, 1, 1, CHOLMOD_REAL, &be.common);
   auto* ap = static_cast<int*>(a->p);
   auto* ai = static_cast<int*>(a->i);
   auto* ax = static_cast<double*>(a->x);
@@ -90,93 +111,95 @@ bool SparseSolver::solve(const BlockSparseMatrix& k, const Eigen::VectorXd& rhs,
   }
   ap[n] = pos;
 
-  const bool warm = options_.reuse_factorization && factor_ != nullptr && static_cast<int>(factor_->n) == n &&
-                    last_solution_.size() == n;
+  const bool warm = options_.reuse_factorization && be.factor != nullptr && static_cast<int>(be.factor->n) == n &&
+                    be.last_solution.size() == n;
   if (warm) {
-    x = last_solution_;
+    x = be.last_solution;
     int iterations = 0;
-    const bool converged = preconditioned_cg(a, rhs, x, iterations);
+    const bool converged = preconditioned_cg(be, options_, a, rhs, x, iterations);
     counters_.cg_iterations += iterations;
     if (converged && x.allFinite()) {
       ++counters_.cg_solves;
-      cholmod_free_sparse(&a, &common_);
-      last_solution_ = x;
+      cholmod_free_sparse(&a, &be.common);
+      be.last_solution = x;
       return true;
     }
   }
-  const bool ok = refactorize(a, n, reason);
-  cholmod_free_sparse(&a, &common_);
+  const bool ok = refactorize(be, counters_, a, n, reason);
+  cholmod_free_sparse(&a, &be.common);
   if (!ok) return false;
 
-  cholmod_dense* b = cholmod_allocate_dense(n, 1, n, CHOLMOD_REAL, &common_);
+  cholmod_dense* b = cholmod_allocate_dense(n, 1, n, CHOLMOD_REAL, &be.common);
   std::copy(rhs.data(), rhs.data() + n, static_cast<double*>(b->x));
-  cholmod_dense* sol = cholmod_solve(CHOLMOD_A, factor_, b, &common_);
-  cholmod_free_dense(&b, &common_);
+  cholmod_dense* sol = cholmod_solve(CHOLMOD_A, be.factor, b, &be.common);
+  cholmod_free_dense(&b, &be.common);
   if (sol == nullptr) {
-    reason = "CHOLMOD solve failed (status " + std::to_string(common_.status) + ")";
+    reason = "CHOLMOD solve failed (status " + std::to_string(be.common.status) + ")";
     return false;
   }
   x.resize(n);
   std::copy(static_cast<double*>(sol->x), static_cast<double*>(sol->x) + n, x.data());
-  cholmod_free_dense(&sol, &common_);
+  cholmod_free_dense(&sol, &be.common);
   if (!x.allFinite()) {
     reason = "the solution has non-finite values (ill-conditioned system: penalty too stiff?)";
     return false;
   }
-  last_solution_ = x;
+  be.last_solution = x;
   return true;
 }
 
-bool SparseSolver::refactorize(cholmod_sparse* a, int n, std::string& reason) {
+namespace {
+
+bool refactorize(SparseSolver::Backend& be, SolverCounters& counters, cholmod_sparse* a, int n, std::string& reason) {
   const auto start = std::chrono::steady_clock::now();
   const auto* ap = static_cast<const int*>(a->p);
   const auto* ai = static_cast<const int*>(a->i);
   const int pos = ap[n];
-  const bool same_pattern = factor_ && static_cast<int>(pattern_columns_.size()) == n + 1 &&
-                            std::equal(ap, ap + n + 1, pattern_columns_.begin()) &&
-                            static_cast<int>(pattern_rows_.size()) == pos &&
-                            std::equal(ai, ai + pos, pattern_rows_.begin());
+  const bool same_pattern = be.factor && static_cast<int>(be.pattern_columns.size()) == n + 1 &&
+                            std::equal(ap, ap + n + 1, be.pattern_columns.begin()) &&
+                            static_cast<int>(be.pattern_rows.size()) == pos &&
+                            std::equal(ai, ai + pos, be.pattern_rows.begin());
   if (!same_pattern) {
-    if (factor_) cholmod_free_factor(&factor_, &common_);
-    factor_ = cholmod_analyze(a, &common_);
-    pattern_columns_.assign(ap, ap + n + 1);
-    pattern_rows_.assign(ai, ai + pos);
+    if (be.factor) cholmod_free_factor(&be.factor, &be.common);
+    be.factor = cholmod_analyze(a, &be.common);
+    be.pattern_columns.assign(ap, ap + n + 1);
+    be.pattern_rows.assign(ai, ai + pos);
   }
-  counters_.symbolic_analyses += !same_pattern;
-  ++counters_.factorizations;
-  bool ok = factor_ != nullptr && cholmod_factorize(a, factor_, &common_) != 0;
-  if (ok && (common_.status == CHOLMOD_NOT_POSDEF || factor_->minor < static_cast<size_t>(n))) {
+  counters.symbolic_analyses += !same_pattern;
+  ++counters.factorizations;
+  bool ok = be.factor != nullptr && cholmod_factorize(a, be.factor, &be.common) != 0;
+  if (ok && (be.common.status == CHOLMOD_NOT_POSDEF || be.factor->minor < static_cast<size_t>(n))) {
     ok = false;
-    reason = "the system matrix is not positive definite (pivot " + std::to_string(factor_->minor / 6) +
+    reason = "the system matrix is not positive definite (pivot " + std::to_string(be.factor->minor / 6) +
              " of the free blocks)";
   } else if (!ok) {
-    reason = "CHOLMOD factorisation failed (status " + std::to_string(common_.status) + ")";
+    reason = "CHOLMOD factorisation failed (status " + std::to_string(be.common.status) + ")";
   }
   if (!ok) {
     // Force a fresh analysis next time: the failed factor may be in an odd state.
-    cholmod_free_factor(&factor_, &common_);
-    pattern_columns_.clear();
-    last_solution_.resize(0);
+    cholmod_free_factor(&be.factor, &be.common);
+    be.pattern_columns.clear();
+    be.last_solution.resize(0);
     return false;
   }
-  factor_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  be.factor_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return true;
 }
 
-bool SparseSolver::preconditioned_cg(cholmod_sparse* a, const Eigen::VectorXd& rhs, Eigen::VectorXd& x,
-                                     int& iterations) {
+bool preconditioned_cg(SparseSolver::Backend& be, const SolverOptions& options, cholmod_sparse* a,
+                       const Eigen::VectorXd& rhs, Eigen::VectorXd& x, int& iterations) {
   const auto start = std::chrono::steady_clock::now();
   const int n = static_cast<int>(rhs.size());
   // Iterations are worth it while they cost less than a factorisation; the first
   // attempts, before any iteration has been timed, may use the full allowance.
-  int allowed = options_.max_iterations;
-  if (iteration_seconds_ > 0.0)
-    allowed = std::min(allowed, static_cast<int>(factor_seconds_ / iteration_seconds_));
+  int allowed = options.max_iterations;
+  if (be.iteration_seconds > 0.0)
+    allowed = std::min(allowed, static_cast<int>(be.factor_seconds / be.iteration_seconds));
   if (allowed < 1) return false;
 
-  cholmod_dense* xd = cholmod_allocate_dense(n, 1, n, CHOLMOD_REAL, &common_);
-  cholmod_dense* rd = cholmod_allocate_dense(n, 1, n, CHOLMOD_REAL, &common_);
-  cholmod_dense* qd = cholmod_allocate_dense(n, 1, n, CHOLMOD_REAL, &common_);
+  cholmod_dense* xd = cholmod_allocate_dense(n, 1, n, CHOLMOD_REAL, &be.common);
+  cholmod_dense* rd = cholmod_allocate_dense(n, 1, n, CHOLMOD_REAL, &be.common);
+  cholmod_dense* qd = cholmod_allocate_dense(n, 1, n, CHOLMOD_REAL, &be.common);
   auto* xp = static_cast<double*>(xd->x);
   auto* rp = static_cast<double*>(rd->x);
   Eigen::Map<Eigen::VectorXd> r(rp, n);
@@ -184,23 +207,23 @@ bool SparseSolver::preconditioned_cg(cholmod_sparse* a, const Eigen::VectorXd& r
   std::copy(x.data(), x.data() + n, xp);
   std::copy(rhs.data(), rhs.data() + n, rp);
   double minus_one[2] = {-1.0, 0.0}, one[2] = {1.0, 0.0}, zero[2] = {0.0, 0.0};
-  cholmod_sdmult(a, 0, minus_one, one, xd, rd, &common_);
-  const double target = options_.tolerance * rhs.norm();
+  cholmod_sdmult(a, 0, minus_one, one, xd, rd, &be.common);
+  const double target = options.tolerance * rhs.norm();
   Eigen::VectorXd p, z, q(n);
   double rz = 0.0;
   bool converged = r.norm() <= target;
   iterations = 0;
   while (!converged && iterations < allowed) {
-    cholmod_dense* zd = cholmod_solve(CHOLMOD_A, factor_, rd, &common_);
+    cholmod_dense* zd = cholmod_solve(CHOLMOD_A, be.factor, rd, &be.common);
     if (zd == nullptr) break;
     z = Eigen::Map<Eigen::VectorXd>(static_cast<double*>(zd->x), n);
-    cholmod_free_dense(&zd, &common_);
+    cholmod_free_dense(&zd, &be.common);
     const double rz_new = r.dot(z);
     p = iterations == 0 ? z : Eigen::VectorXd(z + (rz_new / rz) * p);
     rz = rz_new;
     // q = K p
     std::copy(p.data(), p.data() + n, xp);
-    cholmod_sdmult(a, 0, one, zero, xd, qd, &common_);
+    cholmod_sdmult(a, 0, one, zero, xd, qd, &be.common);
     q = Eigen::Map<Eigen::VectorXd>(static_cast<double*>(qd->x), n);
     const double pq = p.dot(q);
     ++iterations;
@@ -210,14 +233,16 @@ bool SparseSolver::preconditioned_cg(cholmod_sparse* a, const Eigen::VectorXd& r
     r -= alpha * q;
     converged = r.norm() <= target;
   }
-  cholmod_free_dense(&xd, &common_);
-  cholmod_free_dense(&rd, &common_);
-  cholmod_free_dense(&qd, &common_);
+  cholmod_free_dense(&xd, &be.common);
+  cholmod_free_dense(&rd, &be.common);
+  cholmod_free_dense(&qd, &be.common);
   if (iterations > 0) {
     const double per = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() / iterations;
-    iteration_seconds_ = iteration_seconds_ > 0.0 ? 0.9 * iteration_seconds_ + 0.1 * per : per;
+    be.iteration_seconds = be.iteration_seconds > 0.0 ? 0.9 * be.iteration_seconds + 0.1 * per : per;
   }
   return converged;
 }
+
+}  // namespace
 
 }  // namespace ddafit

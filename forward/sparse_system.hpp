@@ -1,10 +1,11 @@
 // The global DDA system K D = F as 6x6 blocks (one per free block and per touching
-// pair), and its sparse Cholesky solve with SuiteSparse CHOLMOD.
+// pair), and its sparse Cholesky solve with SuiteSparse CHOLMOD. CHOLMOD stays inside
+// sparse_system.cpp (SparseSolver::Backend): nothing that includes this header compiles
+// against SuiteSparse.
 #pragma once
 
-#include <cholmod.h>
-
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <unordered_map>
 #include <vector>
@@ -65,21 +66,14 @@ class SparseSolver {
 
   const SolverCounters& counters() const { return counters_; }
 
- private:
-  // Conjugate gradients on K with the stored factor as preconditioner, starting from x;
-  // false when they do not converge within the affordable iterations.
-  bool preconditioned_cg(cholmod_sparse* a, const Eigen::VectorXd& rhs, Eigen::VectorXd& x, int& iterations);
-  bool refactorize(cholmod_sparse* a, int n, std::string& reason);
+  // CHOLMOD's workspace, the last factor and its pattern, the CG timings; opaque outside
+  // sparse_system.cpp.
+  struct Backend;
 
+ private:
   SolverOptions options_;
   SolverCounters counters_;
-  cholmod_common common_;
-  cholmod_factor* factor_ = nullptr;
-  Eigen::VectorXd last_solution_;
-  double factor_seconds_ = 0.0;     // wall time of the last factorisation
-  double iteration_seconds_ = 0.0;  // running mean wall time of one CG iteration
-  std::vector<int> pattern_columns_;
-  std::vector<int> pattern_rows_;
+  std::unique_ptr<Backend> backend_;
 };
 
 }  // namespace ddafit

@@ -44,14 +44,12 @@ constexpr int kHistoryColumns = 8;  // time, point, x, y, ux, uy, vx, vy
 
 nlohmann::json summary_json(const SimulationSummary& s) {
   nlohmann::json points = nlohmann::json::array();
-  for (const PointSummary& p : s.points)
-    points.push_back({{"name", p.name},
-                      {"max_lateral_displacement", p.max_lateral_displacement},
-                      {"max_total_displacement", p.max_total_displacement},
-                      {"peak_lateral_velocity", p.peak_lateral_velocity},
-                      {"peak_total_velocity", p.peak_total_velocity},
-                      {"duration", p.duration},
-                      {"stopped", p.stopped}});
+  for (const PointSummary& p : s.points) {
+    nlohmann::json point = {{"name", p.name}};
+    for (const PointQuantity& q : kPointQuantities)
+      point[q.name] = q.flag ? nlohmann::json(q.get(p) != 0.0) : nlohmann::json(q.get(p));
+    points.push_back(point);
+  }
   return {{"points", points}, {"warnings", s.warnings}};
 }
 
@@ -60,12 +58,8 @@ SimulationSummary summary_from_json(const nlohmann::json& j) {
   for (const auto& p : j.at("points")) {
     PointSummary q;
     q.name = p.at("name").get<std::string>();
-    q.max_lateral_displacement = p.at("max_lateral_displacement").get<double>();
-    q.max_total_displacement = p.at("max_total_displacement").get<double>();
-    q.peak_lateral_velocity = p.at("peak_lateral_velocity").get<double>();
-    q.peak_total_velocity = p.at("peak_total_velocity").get<double>();
-    q.duration = p.at("duration").get<double>();
-    q.stopped = p.at("stopped").get<bool>();
+    for (const PointQuantity& k : kPointQuantities)
+      k.set(q, k.flag ? (p.at(k.name).get<bool>() ? 1.0 : 0.0) : p.at(k.name).get<double>());
     s.points.push_back(q);
   }
   s.warnings = j.at("warnings").get<std::vector<std::string>>();

@@ -8,12 +8,8 @@
 namespace ddafit::inverse {
 
 double summary_value(const PointSummary& p, const std::string& quantity) {
-  if (quantity == "max_lateral_displacement") return p.max_lateral_displacement;
-  if (quantity == "max_total_displacement") return p.max_total_displacement;
-  if (quantity == "peak_lateral_velocity") return p.peak_lateral_velocity;
-  if (quantity == "peak_total_velocity") return p.peak_total_velocity;
-  if (quantity == "duration") return p.duration;
-  if (quantity == "stopped") return p.stopped ? 1.0 : 0.0;
+  for (const PointQuantity& q : kPointQuantities)
+    if (quantity == q.name) return q.get(p);
   return std::numeric_limits<double>::quiet_NaN();
 }
 

@@ -10,15 +10,18 @@
 #include <sstream>
 
 #include "forward/io/yaml_checks.hpp"
+#include "forward/run_summary.hpp"
 #include "inverse/study.hpp"
 #include "forward/io/text_input.hpp"
 
 namespace ddafit::inverse {
 
 const std::vector<std::string>& summary_quantities() {
-  static const std::vector<std::string> names{"max_lateral_displacement", "max_total_displacement",
-                                              "peak_lateral_velocity",    "peak_total_velocity",
-                                              "duration",                 "stopped"};
+  static const std::vector<std::string> names = [] {
+    std::vector<std::string> all;
+    for (const PointQuantity& q : kPointQuantities) all.emplace_back(q.name);
+    return all;
+  }();
   return names;
 }
 

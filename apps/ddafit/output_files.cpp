@@ -65,12 +65,9 @@ void write_summary_json(const std::string& path, const std::string& scene_path, 
   j["warnings"] = s.warnings;
   j["points"] = nlohmann::ordered_json::object();
   for (const PointSummary& p : s.points) {
-    j["points"][p.name] = {{"max_lateral_displacement", p.max_lateral_displacement},
-                           {"max_total_displacement", p.max_total_displacement},
-                           {"peak_lateral_velocity", p.peak_lateral_velocity},
-                           {"peak_total_velocity", p.peak_total_velocity},
-                           {"duration", p.duration},
-                           {"stopped", p.stopped}};
+    nlohmann::ordered_json& point = j["points"][p.name];
+    for (const PointQuantity& q : kPointQuantities)
+      point[q.name] = q.flag ? nlohmann::ordered_json(q.get(p) != 0.0) : nlohmann::ordered_json(q.get(p));
   }
   j["run"] = {{"steps", s.run.steps},
               {"open_close_iterations", s.run.open_close_iterations},

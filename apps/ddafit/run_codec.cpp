@@ -12,9 +12,13 @@ std::string encode_run(const SimulationResult& r, double seconds) {
   j["simulated_time"] = r.summary.run.simulated_time;
   j["seconds"] = seconds;
   j["points"] = nlohmann::json::array();
-  for (const PointSummary& p : r.summary.points)
-    j["points"].push_back({p.name, p.max_lateral_displacement, p.max_total_displacement, p.peak_lateral_velocity,
-                           p.peak_total_velocity, p.duration, p.stopped});
+  // Each point as [name, quantities in kPointQuantities order].
+  for (const PointSummary& p : r.summary.points) {
+    nlohmann::json point = nlohmann::json::array({p.name});
+    for (const PointQuantity& q : kPointQuantities)
+      point.push_back(q.flag ? nlohmann::json(q.get(p) != 0.0) : nlohmann::json(q.get(p)));
+    j["points"].push_back(point);
+  }
   return j.dump();
 }
 
@@ -27,9 +31,16 @@ SimulationResult decode_run(const std::string& text, double* seconds) {
   *seconds = j["seconds"].is_number() ? j["seconds"].get<double>() : 0.0;
   // JSON has no NaN: a non-finite value was written as null and reads back as NaN.
   const auto number = [](const nlohmann::json& v) { return v.is_number() ? v.get<double>() : NAN; };
-  for (const auto& p : j["points"])
-    r.summary.points.push_back({p[0].get<std::string>(), number(p[1]), number(p[2]), number(p[3]), number(p[4]),
-                                number(p[5]), p[6].get<bool>()});
+  for (const auto& p : j["points"]) {
+    PointSummary point;
+    point.name = p[0].get<std::string>();
+    int column = 1;
+    for (const PointQuantity& q : kPointQuantities) {
+      const nlohmann::json& v = p[column++];
+      q.set(point, q.flag ? (v.get<bool>() ? 1.0 : 0.0) : number(v));
+    }
+    r.summary.points.push_back(point);
+  }
   return r;
 }
 
