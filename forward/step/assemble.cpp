@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "forward/mass_matrix.hpp"
+#include "forward/step/implicit_context.hpp"
 #include "forward/step/point_springs.hpp"
 
 namespace ddafit {
@@ -44,8 +45,9 @@ void add_spring(const Block& bi, const Block& bj, const Vec6& a, const Vec6& b, 
 
 }  // namespace
 
-void assemble(const BlockSystem& s, const ContactSet& contacts, const StepParameters& step, BlockSparseMatrix& k,
-              Eigen::VectorXd& f) {
+void assemble(const BlockSystem& s, const ContactSet& contacts, const StepParameters& step, GlobalSystem& equations) {
+  BlockSparseMatrix& k = equations.k;
+  Eigen::VectorXd& f = equations.f;
   k.reset(s.free_block_count);
   f.setZero(6 * s.free_block_count);
   assemble_blocks(s, step, k, f);

@@ -38,8 +38,11 @@ inline double spring_reference(const ContactPoint& p, const StepParameters& step
   return std::min(0.0, p.separation + step.pushout);
 }
 
+struct GlobalSystem;  // implicit_context.hpp
+
+// K and F of `equations` for the contacts' current states (D is left alone).
 void assemble(const BlockSystem& system, const ContactSet& contacts, const StepParameters& step,
-              BlockSparseMatrix& k, Eigen::VectorXd& f);
+              GlobalSystem& equations);
 
 // Friction force magnitude of a sliding point: N tan(phi), phi from its face's slip history
 // predicted to the middle of the step (forward/contact/contact_law.hpp, seed Eq. 2-3).

@@ -13,10 +13,12 @@ int point_count(const ContactSet& contacts) {
 
 }  // namespace
 
-OpenCloseResult open_close_iterate(const BlockSystem& s, ContactSet& contacts,
-                                   const StepParameters& step, const SimulationOptions& options,
-                                   SparseSolver& solver, BlockSparseMatrix& k, Eigen::VectorXd& f,
-                                   Eigen::VectorXd& d, StepProfile& profile) {
+OpenCloseResult open_close_iterate(ImplicitStepContext& ctx, const StepParameters& step) {
+  const BlockSystem& s = ctx.system;
+  ContactSet& contacts = ctx.contacts;
+  const SimulationOptions& options = ctx.options;
+  StepProfile& profile = ctx.profile;
+  GlobalSystem& eq = ctx.equations;
   OpenCloseResult result;
   int calm_passes = 0;                 // consecutive passes without a state change
   double previous_force_change = 1e300;
@@ -24,11 +26,11 @@ OpenCloseResult open_close_iterate(const BlockSystem& s, ContactSet& contacts,
     result.iterations = pass;
     {
       ScopedTimer timer(profile.assemble);
-      assemble(s, contacts, step, k, f);
+      assemble(s, contacts, step, eq);
     }
     {
       ScopedTimer timer(profile.solve);
-      if (!solver.solve(k, f, d, result.reason)) {
+      if (!ctx.solver.solve(eq.k, eq.f, eq.d, result.reason)) {
         result.solver_failed = true;
         return result;
       }
@@ -36,7 +38,7 @@ OpenCloseResult open_close_iterate(const BlockSystem& s, ContactSet& contacts,
     ContactCheck check;
     {
       ScopedTimer timer(profile.check_contacts);
-      check = check_contacts(s, contacts, d, step);
+      check = check_contacts(s, contacts, eq.d, step);
     }
     const bool last = pass == options.max_open_close_iterations;
     calm_passes = check.changed == 0 ? calm_passes + 1 : 0;

@@ -10,10 +10,9 @@
 #include "forward/block_system.hpp"
 #include "forward/contact/contact_types.hpp"
 #include "forward/options.hpp"
-#include "forward/sparse_system.hpp"
 #include "forward/step/assemble.hpp"
 #include "forward/step/check_contacts.hpp"
-#include "forward/step_profile.hpp"
+#include "forward/step/implicit_context.hpp"
 
 namespace ddafit {
 
@@ -34,9 +33,7 @@ constexpr double kNormalForceTolerance = 1e-3;
 // Share of contacts that may still change state on the last pass of an accepted step.
 constexpr double kUnsettledAllowance = 0.005;
 
-OpenCloseResult open_close_iterate(const BlockSystem& system, ContactSet& contacts,
-                                   const StepParameters& step, const SimulationOptions& options,
-                                   SparseSolver& solver, BlockSparseMatrix& k, Eigen::VectorXd& f,
-                                   Eigen::VectorXd& d, StepProfile& profile);
+// On ctx.contacts with ctx.equations; D of the last pass is left in ctx.equations.d.
+OpenCloseResult open_close_iterate(ImplicitStepContext& ctx, const StepParameters& step);
 
 }  // namespace ddafit

@@ -1,6 +1,7 @@
 // The implicit solver's run (Shi's DDA): each step runs the stages of forward/step/ in
-// order (find contacts -> open-close iteration [assemble, solve, check contacts] ->
-// accept or redo -> update blocks) on one global sparse system.
+// order (find contacts, new_points -> open_close_iterate [assemble, solve, check_contacts]
+// -> judge_step: accept, stiffer or shorter -> update_blocks) on one global sparse system,
+// every stage working on one ImplicitStepContext (implicit_context.hpp).
 #pragma once
 
 #include "forward/block_system.hpp"

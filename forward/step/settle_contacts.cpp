@@ -47,8 +47,11 @@ void load_springs(const BlockSystem& s, ContactSet& contacts, const StepParamete
 
 }  // namespace
 
-bool settle_contacts(BlockSystem& s, ContactDetection& detection, ContactSet& contacts, const StepParameters& step,
-                     int passes, double max_shift, SparseSolver& solver, std::string& problem) {
+bool settle_contacts(ImplicitStepContext& ctx, const StepParameters& step, double max_shift, std::string& problem) {
+  BlockSystem& s = ctx.system;
+  ContactDetection& detection = ctx.detection;
+  ContactSet& contacts = ctx.contacts;
+  const int passes = ctx.options.settle_passes;
   StepParameters relaxed = step;
   relaxed.time_step *= kSettleStepScale;
   std::vector<char> touching(s.blocks.size(), 0);
@@ -61,14 +64,14 @@ bool settle_contacts(BlockSystem& s, ContactDetection& detection, ContactSet& co
     velocities[b] = s.blocks[b].velocity;
     s.blocks[b].velocity.setZero();
   }
-  BlockSparseMatrix k;
-  Eigen::VectorXd f, d;
+  GlobalSystem eq;  // its own: the relaxed step's K and F are not the dynamic ones
+  const Eigen::VectorXd& d = eq.d;
   bool ok = true;
   bool converged_closed = true;  // no point closed in the last pass
   for (int pass = 0; pass < passes && ok; ++pass) {
-    assemble(s, contacts, relaxed, k, f);
+    assemble(s, contacts, relaxed, eq);
     std::string reason;
-    ok = solver.solve(k, f, d, reason);
+    ok = ctx.solver.solve(eq.k, eq.f, eq.d, reason);
     if (!ok) break;
     const auto moving = [&](int b) { return s.blocks[b].unknown >= 0 && touching[b]; };
     const auto unknowns = [&](int b) -> Vec6 { return d.segment<6>(6 * s.blocks[b].unknown); };

@@ -18,7 +18,7 @@
 
 #include "forward/block_system.hpp"
 #include "forward/contact/detect_contacts.hpp"
-#include "forward/sparse_system.hpp"
+#include "forward/step/implicit_context.hpp"
 #include "forward/step/assemble.hpp"
 
 namespace ddafit {
@@ -33,8 +33,7 @@ constexpr double kSettleTolerance = 1e-5;
 // Runs at most `passes` passes, each followed by a new detection (`detection`, whose
 // first_step stays set so that the contacts touching once settled bond). Returns false if
 // the solver fails; `problem` names a pair of touching blocks without an interface.
-bool settle_contacts(BlockSystem& system, ContactDetection& detection, ContactSet& contacts,
-                     const StepParameters& step, int passes, double max_shift, SparseSolver& solver,
-                     std::string& problem);
+// On ctx.system, ctx.detection and ctx.contacts, control.settle_passes passes at most.
+bool settle_contacts(ImplicitStepContext& ctx, const StepParameters& step, double max_shift, std::string& problem);
 
 }  // namespace ddafit

@@ -40,7 +40,11 @@ double max_penetration(const ContactSet& contacts, const StepParameters& step, d
   return deepest;
 }
 
-void update_blocks(BlockSystem& s, ContactSet& contacts, const Eigen::VectorXd& d, double dt, double shear_penalty) {
+void update_blocks(ImplicitStepContext& ctx, double dt) {
+  BlockSystem& s = ctx.system;
+  ContactSet& contacts = ctx.contacts;
+  const Eigen::VectorXd& d = ctx.equations.d;
+  const double shear_penalty = ctx.options.shear_penalty_ratio * ctx.control.penalty;
   for (int bid = 0; bid < static_cast<int>(s.blocks.size()); ++bid) {
     Block& b = s.blocks[bid];
     if (b.unknown < 0) continue;

@@ -10,6 +10,7 @@
 #include "forward/contact/contact_types.hpp"
 #include "forward/step/check_contacts.hpp"
 #include "forward/step/assemble.hpp"
+#include "forward/step/implicit_context.hpp"
 
 namespace ddafit {
 
@@ -28,8 +29,8 @@ double max_penetration(const ContactSet& contacts, const StepParameters& step, d
 // Moves the blocks and advances every point's spring: a locked point keeps its shear
 // offset, a sliding one slips (seed Eq. 2, into its face's slip history) and its shear
 // spring trails it at the friction force, an open one lets go; bonds are lost once a
-// point slides or opens (forward/contact/contact_law.hpp).
-void update_blocks(BlockSystem& system, ContactSet& contacts, const Eigen::VectorXd& d, double time_step,
-                   double shear_penalty);
+// point slides or opens (forward/contact/contact_law.hpp). D is ctx.equations.d of the
+// accepted attempt; the shear springs are at the current penalty (ctx.control).
+void update_blocks(ImplicitStepContext& ctx, double time_step);
 
 }  // namespace ddafit
