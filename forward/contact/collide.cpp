@@ -149,8 +149,11 @@ const char* to_string(ContactState state) {
   return "?";
 }
 
-std::string collide(const BlockSystem& s, const ContactShapes& shapes, const std::vector<std::pair<int, int>>& pairs,
-                    const CollideSettings& settings, ContactSet& contacts, std::vector<Manifold>& geometry) {
+std::string collide(const BlockSystem& s, ContactDetection& detection, const std::vector<std::pair<int, int>>& pairs,
+                    ContactSet& contacts) {
+  const ContactShapes& shapes = detection.shapes;
+  const CollideSettings& settings = detection.settings;
+  std::vector<Manifold>& geometry = detection.geometry;
   // Pass 1, the geometry of every pair of boxes; pass 2 builds the manifolds of the pairs
   // that touch, in place (no full manifold per pair of boxes, no copy).
   const long n = static_cast<long>(pairs.size());

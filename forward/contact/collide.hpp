@@ -41,8 +41,14 @@ struct CollideSettings {
 // with this step's. `scratch` holds the geometry of every pair between calls (its memory
 // is reused). Returns an empty string, or a description of two touching blocks that have
 // no interface.
-std::string collide(const BlockSystem& system, const ContactShapes& shapes,
-                    const std::vector<std::pair<int, int>>& pairs, const CollideSettings& settings,
-                    ContactSet& contacts, std::vector<Manifold>& scratch);
+struct ContactDetection {
+  ContactShapes shapes;      // build_shapes(), once per run
+  CollideSettings settings;  // first_step is cleared after each detection
+  std::vector<Manifold> geometry;  // scratch of the narrow phase
+};
+
+// With detection's shapes and settings; its geometry is the narrow phase's scratch.
+std::string collide(const BlockSystem& system, ContactDetection& detection,
+                    const std::vector<std::pair<int, int>>& pairs, ContactSet& contacts);
 
 }  // namespace ddafit

@@ -11,7 +11,7 @@ std::string prepare_detection(const BlockSystem& s, ContactDetection& detection)
 std::string detect_contacts(const BlockSystem& s, ContactDetection& detection, ContactSet& contacts) {
   CollideSettings& settings = detection.settings;
   const auto pairs = find_pairs(s, detection.shapes, settings.margin, settings.extra_reach);
-  std::string problem = collide(s, detection.shapes, pairs, settings, contacts, detection.geometry);
+  std::string problem = collide(s, detection, pairs, contacts);
   settings.first_step = false;
   return problem;
 }

@@ -10,12 +10,6 @@
 
 namespace ddafit {
 
-struct ContactDetection {
-  ContactShapes shapes;      // build_shapes(), once per run
-  CollideSettings settings;  // first_step is cleared after each detection
-  std::vector<Manifold> geometry;  // scratch of the narrow phase
-};
-
 // Splits the blocks into convex pieces. Returns an empty string, or the name of a block
 // that could not be split.
 std::string prepare_detection(const BlockSystem& system, ContactDetection& detection);

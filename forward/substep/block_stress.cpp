@@ -13,9 +13,10 @@ constexpr double kMaxStrainPerStep = 1e-5;
 
 }  // namespace
 
-void update_block_stress(BlockSystem& s, const std::vector<ContactManifold>& manifolds,
-                         const std::vector<char>& deformable, double duration, double relaxation,
-                         bool measured) {
+void update_block_stress(SubstepContext& ctx, double duration, double relaxation, bool measured) {
+  BlockSystem& s = ctx.system;
+  const std::vector<ContactManifold>& manifolds = ctx.contacts.manifolds;
+  const std::vector<char>& deformable = ctx.deformable;
   if (std::find(deformable.begin(), deformable.end(), char{1}) == deformable.end()) return;
   // Sum of the contact forces' first moments per block: the strain rows of T(p)^T f,
   // (X f_x, Y f_y, (Y f_x + X f_y) / 2) with (X, Y) the point about the centroid.

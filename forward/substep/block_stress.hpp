@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "forward/block_system.hpp"
+#include "forward/substep/substep_context.hpp"
 #include "forward/substep/substep_types.hpp"
 
 namespace ddafit {
@@ -26,8 +27,7 @@ namespace ddafit {
 // impulses over `duration`.
 // `relaxation` in (0, 1]: the share of the way to the contacts' mean stress taken now.
 // `measured` false (the quiet start): the measurement points' origins move with the strain.
-void update_block_stress(BlockSystem& system, const std::vector<ContactManifold>& manifolds,
-                         const std::vector<char>& deformable, double duration, double relaxation,
-                         bool measured);
+// On ctx.system, from ctx.contacts, for the materials ctx.deformable marks.
+void update_block_stress(SubstepContext& ctx, double duration, double relaxation, bool measured);
 
 }  // namespace ddafit

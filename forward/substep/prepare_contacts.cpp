@@ -29,8 +29,11 @@ void compute_block_masses(const BlockSystem& s, std::vector<BlockMass>& masses) 
   }
 }
 
-void prepare_contacts(const BlockSystem& s, const std::vector<BlockMass>& masses, double h, double deep_overlap,
-                      double slop, std::vector<ContactManifold>& manifolds) {
+void prepare_contacts(SubstepContext& ctx, double h, double deep_overlap) {
+  const BlockSystem& s = ctx.system;
+  const std::vector<BlockMass>& masses = ctx.state.masses;
+  const double slop = ctx.detection.settings.linear_slop;
+  std::vector<ContactManifold>& manifolds = ctx.contacts.manifolds;
   const long n = static_cast<long>(manifolds.size());
 #pragma omp parallel for schedule(static) if (n >= kParallelMinimum)
   for (long k = 0; k < n; ++k) {

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "forward/block_system.hpp"
+#include "forward/substep/substep_context.hpp"
 #include "forward/substep/substep_types.hpp"
 
 namespace ddafit {
@@ -17,8 +18,8 @@ void compute_block_masses(const BlockSystem& system, std::vector<BlockMass>& mas
 // cohesion and tension as impulses over one substep h (contact_law.hpp); each manifold the
 // overlap from which its points are corrected in position: `deep_overlap` times the smaller
 // free block's size (the square root of its area), at least the slop (solve_contacts.hpp).
-void prepare_contacts(const BlockSystem& system, const std::vector<BlockMass>& masses, double h, double deep_overlap,
-                      double slop, std::vector<ContactManifold>& manifolds);
+// On ctx.contacts, with ctx.state.masses and the slop of ctx.detection.
+void prepare_contacts(SubstepContext& ctx, double h, double deep_overlap);
 
 // Groups manifolds into colours such that no two manifolds of a colour share a moving
 // block (Box2D v3's constraint graph): a colour's manifolds can be solved at the same

@@ -13,6 +13,7 @@
 #include "forward/substep/integrate.hpp"
 #include "forward/substep/prepare_contacts.hpp"
 #include "forward/substep/solve_contacts.hpp"
+#include "forward/substep/substep_context.hpp"
 
 namespace ddafit {
 namespace {
@@ -61,19 +62,6 @@ constexpr double kCorrectionShare = 0.5;
 // (solve_contacts.hpp, converge_deep).
 constexpr int kDeepIterations = 16;
 
-struct SubstepWork {
-  ContactDetection detection;
-  PositionCorrection correction;
-  ContactSet contacts;
-  WorstOverlap worst;
-  SweepState state;  // velocities, step moves and masses the sweeps work on
-  std::vector<std::vector<int>> colours;
-  std::vector<Vec3> start_velocity, moves;
-  std::vector<char> deformable;  // per material: keeps its strain unknowns
-  std::vector<double> reach;  // per block: largest distance of a vertex from the centroid
-  std::vector<char> near;      // per block: had a contact point within the margin last step
-  std::vector<double> extra_reach;  // per block: how far its step travel exceeds the margin's cover
-};
 
 // The fastest a vertex of block b moves: centroid speed plus the rotation and strain
 // rates times the block's reach.
@@ -92,8 +80,9 @@ double block_reach(const BlockSystem& s, int b) {
 
 // The deepest overlap at the end of the step, relative to the smaller block of its pair;
 // and the points still closing after the last sweep.
-void measure_contacts(const BlockSystem& s, SubstepWork& w, double time, double converged_speed,
-                      SolverReport& report) {
+void measure_contacts(SubstepContext& w, double time, double converged_speed) {
+  const BlockSystem& s = w.system;
+  SolverReport& report = w.report;
   for (const ContactManifold& m : w.contacts.manifolds) {
     const Vec3& va = w.state.velocity[m.block_a];
     const Vec3& vb = w.state.velocity[m.block_b];
@@ -110,18 +99,20 @@ void measure_contacts(const BlockSystem& s, SubstepWork& w, double time, double 
 }
 
 // Broad and narrow phase: this step's manifolds, carrying over the last step's impulses.
-std::string detect(const BlockSystem& s, SubstepWork& w, StepProfile& profile) {
-  ScopedTimer timer(profile.find_contacts);
+std::string detect(SubstepContext& w) {
+  ScopedTimer timer(w.profile->find_contacts);
   w.detection.settings.extra_reach = w.extra_reach;
-  return detect_contacts(s, w.detection, w.contacts);
+  return detect_contacts(w.system, w.detection, w.contacts);
 }
 
 // Masses, contact Jacobians and colours for substeps of length h, and the sweep settings.
-SweepSettings prepare_step(const BlockSystem& s, SubstepWork& w, const SimulationOptions& o, double h, double slop,
-                           StepProfile& profile) {
-  ScopedTimer timer(profile.assemble);
+SweepSettings prepare_step(SubstepContext& w, double h) {
+  const BlockSystem& s = w.system;
+  const SimulationOptions& o = w.options;
+  const double slop = w.detection.settings.linear_slop;
+  ScopedTimer timer(w.profile->assemble);
   compute_block_masses(s, w.state.masses);
-  prepare_contacts(s, w.state.masses, h, kDeepOverlap, slop, w.contacts.manifolds);
+  prepare_contacts(w, h, kDeepOverlap);
   w.state.deep.assign(w.contacts.manifolds.size(), 0);
   w.colours = colour_manifolds(s, w.contacts.manifolds);
   // The contact spring at an eighth of the substep rate, Box2D's ratio (30 Hz at 240 Hz),
@@ -138,39 +129,38 @@ SweepSettings prepare_step(const BlockSystem& s, SubstepWork& w, const Simulatio
 }
 
 // One substep: integrate velocities, warm start, soft sweep, move, relax sweep, slip.
-void run_one_substep(const BlockSystem& s, SubstepWork& w, const SweepSettings& sweep, const Vec2& gravity,
-                     StepProfile& profile) {
+void run_one_substep(SubstepContext& w, const SweepSettings& sweep) {
   SweepSettings relax = sweep;
   relax.use_bias = false;
-  ScopedTimer timer(profile.solve);
-  integrate_velocities(w.state, gravity, sweep.h, w.start_velocity);
+  ScopedTimer timer(w.profile->solve);
+  integrate_velocities(w.state, w.scene.gravity, sweep.h, w.start_velocity);
   warm_start(w.contacts.manifolds, w.colours, w.state);
   solve_contacts(w.contacts.manifolds, w.colours, sweep, w.state);
   integrate_positions(w.state, sweep.h, w.start_velocity, w.moves);
   solve_contacts(w.contacts.manifolds, w.colours, relax, w.state);
   converge_deep(w.contacts.manifolds, relax, kDeepIterations, w.state);
-  advance_slip(s, w.moves, w.contacts);
+  advance_slip(w.system, w.moves, w.contacts);
 }
 
 // A step of length dt on this step's manifolds: substeps, then the blocks move (once,
 // exactly: move_blocks) and each deformable block takes its stress from its contacts
 // (block_stress.hpp).
-void advance(BlockSystem& s, SubstepWork& w, const SimulationOptions& o, double dt, double slop, const Vec2& gravity,
-             bool measured, StepProfile& profile) {
-  const double h = dt / o.substeps;
-  const SweepSettings sweep = prepare_step(s, w, o, h, slop, profile);
+void advance(SubstepContext& w, double dt, bool measured) {
+  BlockSystem& s = w.system;
+  const int substeps = w.options.substeps;
+  const SweepSettings sweep = prepare_step(w, dt / substeps);
   for (size_t b = 0; b < s.blocks.size(); ++b) {
     w.state.velocity[b] = s.blocks[b].velocity.head<3>();
     w.state.step_moves[b].setZero();
   }
-  for (int k = 0; k < o.substeps; ++k) run_one_substep(s, w, sweep, gravity, profile);
+  for (int k = 0; k < substeps; ++k) run_one_substep(w, sweep);
   {
-    ScopedTimer timer(profile.solve);
+    ScopedTimer timer(w.profile->solve);
     correct_positions(w.contacts.manifolds, w.correction, w.state);
   }
-  ScopedTimer timer(profile.update);
+  ScopedTimer timer(w.profile->update);
   move_blocks(s, w.state, measured);
-  update_block_stress(s, w.contacts.manifolds, w.deformable, dt, kStressRelaxation, measured);
+  update_block_stress(w, dt, kStressRelaxation, measured);
 }
 
 // The normal impulses of the last substep, point by point in manifold order.
@@ -199,12 +189,18 @@ double impulse_change(const std::vector<ContactManifold>& manifolds, const std::
 // kQuietStartTolerance of the largest. Blocks in flight stay exactly as given; the
 // measurement points' origins move with the blocks, and no slip is counted: the slide
 // starts from rest, not with a bounce.
-std::string quiet_start(BlockSystem& s, SubstepWork& w, const SimulationOptions& o, double dt, const Vec2& gravity,
-                        StepProfile& profile) {
+std::string quiet_start(SubstepContext& w) {
+  BlockSystem& s = w.system;
   CollideSettings& settings = w.detection.settings;
-  ScopedTimer timer(profile.settle);
+  ScopedTimer timer(w.profile->settle);
+  StepProfile* const run_profile = w.profile;
   StepProfile ignored;
-  if (std::string problem = detect(s, w, ignored); !problem.empty()) return problem;
+  w.profile = &ignored;
+  const auto restore = [&] { w.profile = run_profile; };
+  if (std::string problem = detect(w); !problem.empty()) {
+    restore();
+    return problem;
+  }
   std::vector<char> touching(s.blocks.size(), 0);
   for (const ContactManifold& m : w.contacts.manifolds)
     for (int q = 0; q < m.point_count; ++q)
@@ -218,9 +214,9 @@ std::string quiet_start(BlockSystem& s, SubstepWork& w, const SimulationOptions&
   }
   std::vector<double> before;
   for (int k = 0; k < kQuietStartSteps; ++k) {
-    if (k > 0) detect(s, w, ignored);
+    if (k > 0) detect(w);
     last_normal_impulses(w.contacts.manifolds, before);
-    advance(s, w, o, dt, settings.linear_slop, gravity, false, ignored);
+    advance(w, w.scene.max_step, false);
     for (Block& b : s.blocks)
       if (!b.fixed) b.velocity.setZero();
     if (impulse_change(w.contacts.manifolds, before) <= kQuietStartTolerance) break;
@@ -231,6 +227,7 @@ std::string quiet_start(BlockSystem& s, SubstepWork& w, const SimulationOptions&
   }
   reset_histories(s, w.contacts);
   settings.first_step = true;  // bonds form between the blocks touching once settled
+  restore();
   return {};
 }
 
@@ -240,7 +237,10 @@ std::string quiet_start(BlockSystem& s, SubstepWork& w, const SimulationOptions&
 // block in flight does not shorten the step: its flight is exact (trapezoidal update), and
 // speculative_reach() widens its contact margin by its travel instead. One small block
 // thrown clear of section VII's toe at 50 m/s had cut every step of the slide to 3 ms.
-double choose_step(const BlockSystem& s, SubstepWork& w, const Scene& scene, double previous, double max_move) {
+double choose_step(SubstepContext& w, double previous) {
+  const BlockSystem& s = w.system;
+  const Scene& scene = w.scene;
+  const double max_move = w.max_move;
   double fastest = 0.0;
   for (size_t b = 0; b < s.blocks.size(); ++b) {
     if (s.blocks[b].fixed) continue;
@@ -258,7 +258,10 @@ double choose_step(const BlockSystem& s, SubstepWork& w, const Scene& scene, dou
 // Per block, how much further than max_move its vertices can travel in a step of dt: the
 // speculative margin its contacts get on top of the scene's (zero for blocks in contact,
 // whose speed chose the step). Gravity's share counted as in choose_step.
-void speculative_reach(const BlockSystem& s, SubstepWork& w, double dt, double gravity, double max_move) {
+void speculative_reach(SubstepContext& w, double dt) {
+  const BlockSystem& s = w.system;
+  const double gravity = w.scene.gravity.norm();
+  const double max_move = w.max_move;
   for (size_t b = 0; b < s.blocks.size(); ++b) {
     const double travel = s.blocks[b].fixed ? 0.0 : (vertex_speed_bound(s.blocks[b], w.reach[b]) + gravity * dt) * dt;
     w.extra_reach[b] = std::max(0.0, travel - max_move);
@@ -266,7 +269,9 @@ void speculative_reach(const BlockSystem& s, SubstepWork& w, double dt, double g
 }
 
 // Which blocks have a contact point within `margin` (the scene's margin, not the widened one).
-void mark_near(const SubstepWork& w, double margin, std::vector<char>& near) {
+void mark_near(SubstepContext& w) {
+  const double margin = w.detection.settings.margin;
+  std::vector<char>& near = w.near;
   std::fill(near.begin(), near.end(), 0);
   for (const ContactManifold& m : w.contacts.manifolds)
     for (int q = 0; q < m.point_count; ++q)
@@ -275,7 +280,8 @@ void mark_near(const SubstepWork& w, double margin, std::vector<char>& near) {
 
 // Largest distance a vertex of a block in contact moved in the step (translation plus
 // rotation times reach).
-double largest_move(const BlockSystem& s, const SubstepWork& w) {
+double largest_move(const SubstepContext& w) {
+  const BlockSystem& s = w.system;
   double moved = 0.0;
   for (size_t b = 0; b < s.blocks.size(); ++b)
     if (!s.blocks[b].fixed && w.extra_reach[b] == 0.0)
@@ -290,7 +296,7 @@ void run_substep(const Scene& scene, BlockSystem& s, RunRecorder& recorder, Simu
   SolverReport& report = summary.solver;
   StepProfile& profile = summary.profile;
   RunCounters& run = summary.run;
-  SubstepWork w;
+  SubstepContext w(scene, s, summary);
   if (const std::string bad = prepare_detection(s, w.detection); !bad.empty()) {
     summary.status = RunStatus::InvalidScene;
     summary.message = "block '" + bad + "': its polygon could not be split into convex pieces for contact";
@@ -306,6 +312,7 @@ void run_substep(const Scene& scene, BlockSystem& s, RunRecorder& recorder, Simu
   w.extra_reach.assign(n, 0.0);
   for (const Material& m : scene.materials) w.deformable.push_back(!(m.rigid || o.rigid_blocks));
   const double max_move = o.max_displacement_ratio * s.half_model_size;
+  w.max_move = max_move;
   CollideSettings& settings = w.detection.settings;
   settings.margin = o.search_distance_factor * max_move;
   settings.linear_slop = kSlopRatio * max_move;
@@ -314,7 +321,7 @@ void run_substep(const Scene& scene, BlockSystem& s, RunRecorder& recorder, Simu
   w.correction = {kCorrectionPasses, kCorrectionFraction, kCorrectionShare * max_move};
   report.substeps = o.substeps;
   double time = 0.0;
-  if (std::string problem = quiet_start(s, w, o, scene.max_step, scene.gravity, profile); !problem.empty()) {
+  if (std::string problem = quiet_start(w); !problem.empty()) {
     summary.status = RunStatus::InvalidScene;
     summary.message = "t = 0: " + problem;
     return;
@@ -334,27 +341,27 @@ void run_substep(const Scene& scene, BlockSystem& s, RunRecorder& recorder, Simu
   };
 
   while (!recorder.finished(time) && !recorder.interrupted(time, s)) {
-    mark_near(w, settings.margin, w.near);
-    step = choose_step(s, w, scene, step, max_move);
+    mark_near(w);
+    step = choose_step(w, step);
     double landing = -1.0;
     const double dt = recorder.fit_step(time, step, &landing);
-    speculative_reach(s, w, dt, scene.gravity.norm(), max_move);
-    if (std::string problem = detect(s, w, profile); !problem.empty()) {
+    speculative_reach(w, dt);
+    if (std::string problem = detect(w); !problem.empty()) {
       summary.status = RunStatus::InvalidScene;
       std::ostringstream out;
       out << "t = " << time << " s, step " << run.steps + 1 << ": " << problem;
       summary.message = out.str();
       return;
     }
-    advance(s, w, o, dt, settings.linear_slop, scene.gravity, true, profile);
+    advance(w, dt, true);
     time = landing >= 0.0 ? landing : time + dt;
     ++run.steps;
     run.smallest_step = std::min(run.smallest_step, dt);
     run.largest_step = std::max(run.largest_step, dt);
     {
       ScopedTimer timer(profile.check_contacts);
-      measure_contacts(s, w, time, kConvergedVelocityRatio * max_move / dt, report);
-      if (largest_move(s, w) > 0.5 * settings.margin) ++report.fast_steps;
+      measure_contacts(w, time, kConvergedVelocityRatio * max_move / dt);
+      if (largest_move(w) > 0.5 * settings.margin) ++report.fast_steps;
     }
     recorder.record(time, s);
     if (report.worst_penetration_ratio > kFailPenetrationRatio) {

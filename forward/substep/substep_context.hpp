@@ -1,0 +1,44 @@
+// The substep solver's step context (forward/substep/run_substep.cpp's stages share it).
+#pragma once
+
+#include <vector>
+
+#include "forward/block_system.hpp"
+#include "forward/contact/contact_types.hpp"
+#include "forward/contact/detect_contacts.hpp"
+#include "forward/contact/overlap.hpp"
+#include "forward/run_summary.hpp"
+#include "forward/scene.hpp"
+#include "forward/substep/solve_contacts.hpp"
+#include "forward/substep/substep_types.hpp"
+
+namespace ddafit {
+
+// What every stage of the substep solver's step shares, after Box2D v3's b2StepContext:
+// the scene, the blocks, the contacts and the sweeps' state, the per-block bounds that set
+// the step and the margins, and where the run's profile and solver report go.
+struct SubstepContext {
+  SubstepContext(const Scene& scene, BlockSystem& system, SimulationSummary& summary)
+      : scene(scene), options(scene.options), system(system), profile(&summary.profile), report(summary.solver) {}
+
+  const Scene& scene;
+  const SimulationOptions& options;
+  BlockSystem& system;
+  StepProfile* profile;  // the quiet start points it at a scratch profile: its time is `settle`'s
+  SolverReport& report;
+  double max_move = 0.0;  // m, the largest move of a vertex in contact per step
+
+  ContactDetection detection;
+  PositionCorrection correction;
+  ContactSet contacts;
+  WorstOverlap worst;
+  SweepState state;  // velocities, step moves and masses the sweeps work on
+  std::vector<std::vector<int>> colours;
+  std::vector<Vec3> start_velocity, moves;
+  std::vector<char> deformable;  // per material: keeps its strain unknowns
+  std::vector<double> reach;  // per block: largest distance of a vertex from the centroid
+  std::vector<char> near;      // per block: had a contact point within the margin last step
+  std::vector<double> extra_reach;  // per block: how far its step travel exceeds the margin's cover
+};
+
+}  // namespace ddafit
