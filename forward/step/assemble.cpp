@@ -3,7 +3,6 @@
 #include <cmath>
 
 #include "forward/mass_matrix.hpp"
-#include "forward/step/implicit_context.hpp"
 #include "forward/step/point_springs.hpp"
 
 namespace ddafit {

@@ -38,7 +38,12 @@ inline double spring_reference(const ContactPoint& p, const StepParameters& step
   return std::min(0.0, p.separation + step.pushout);
 }
 
-struct GlobalSystem;  // implicit_context.hpp
+// K D = F of one attempt: K and F from assemble(), D from the solve.
+struct GlobalSystem {
+  BlockSparseMatrix k;
+  Eigen::VectorXd f;
+  Eigen::VectorXd d;
+};
 
 // K and F of `equations` for the contacts' current states (D is left alone).
 void assemble(const BlockSystem& system, const ContactSet& contacts, const StepParameters& step,

@@ -5,8 +5,6 @@
 // parameters (StepParameters) where the attempt matters.
 #pragma once
 
-#include <Eigen/Core>
-
 #include "forward/block_system.hpp"
 #include "forward/contact/contact_types.hpp"
 #include "forward/contact/detect_contacts.hpp"
@@ -14,16 +12,10 @@
 #include "forward/run_summary.hpp"
 #include "forward/scene.hpp"
 #include "forward/sparse_system.hpp"
+#include "forward/step/assemble.hpp"
 #include "forward/step/control_time_step.hpp"
 
 namespace ddafit {
-
-// K D = F of one attempt: K and F from assemble(), D from the solve.
-struct GlobalSystem {
-  BlockSparseMatrix k;
-  Eigen::VectorXd f;
-  Eigen::VectorXd d;
-};
 
 struct ImplicitStepContext {
   ImplicitStepContext(const Scene& scene, BlockSystem& system, SimulationSummary& summary,

@@ -3,9 +3,49 @@
 #include <algorithm>
 #include <sstream>
 
-#include "forward/step/update_blocks.hpp"
+#include "forward/common/displace_block.hpp"
 
 namespace ddafit {
+namespace {
+
+// Largest displacement of any vertex over the step for the solved unknowns d.
+double max_vertex_displacement(const BlockSystem& s, const Eigen::VectorXd& d) {
+  double largest = 0.0;
+  for (int b = 0; b < static_cast<int>(s.blocks.size()); ++b)
+    if (s.blocks[b].unknown >= 0)
+      largest = std::max(largest, block_displacement(s, b, d.segment<6>(6 * s.blocks[b].unknown)));
+  return largest;
+}
+
+// Deepest penetration (> 0) among closed contacts that the step made deeper, and which
+// contact it is. Depth counts from where the spring is unloaded (spring_reference), so
+// a deep contact being pushed out is judged on what the step adds. A contact deeper than
+// hard_limit in all reads as at least as deep as `limit` (the limit the caller compares
+// against): a penalty too soft would otherwise let a block sink a little further every
+// step, each step mending nothing.
+double max_penetration(const ContactSet& contacts, const StepParameters& step, double limit, double hard_limit,
+                       PointRef& which) {
+  double deepest = 0.0;
+  for (int k = 0; k < static_cast<int>(contacts.manifolds.size()); ++k) {
+    const ContactManifold& m = contacts.manifolds[k];
+    for (int q = 0; q < m.point_count; ++q) {
+      const ContactPoint& p = m.points[q];
+      const SpringState& c = p.spring;
+      // Only points this step drove deeper: one found already deep (a corner that came
+      // round a corner) cannot be mended by a stiffer spring within the step, only pushed
+      // back out over the next steps.
+      const double depth = std::max(spring_reference(p, step) - c.normal_gap, -c.normal_gap - (hard_limit - limit));
+      if (c.state != ContactState::Open && c.normal_gap < p.separation && depth > deepest) {
+        deepest = depth;
+        which = {k, q};
+      }
+    }
+  }
+  return deepest;
+}
+
+}  // namespace
+
 
 std::string describe_contact(const BlockSystem& s, const ContactSet& contacts, PointRef at) {
   const ContactManifold& m = contacts.manifolds[at.manifold];
@@ -35,7 +75,7 @@ StepJudgement judge_step(ImplicitStepContext& ctx, const StepParameters& step, c
   PointRef deepest;
   // Half the search distance: deeper, a contact is close to being lost altogether.
   const double depth =
-      max_penetration(ctx.contacts, step, control.max_penetration, 0.5 * ctx.detection.settings.margin, &deepest);
+      max_penetration(ctx.contacts, step, control.max_penetration, 0.5 * ctx.detection.settings.margin, deepest);
   if (depth <= control.max_penetration) return {};
   const std::string where = describe_contact(ctx.system, ctx.contacts, deepest);
   if (raise_penalty(control, ctx.options)) {

@@ -2,11 +2,11 @@
 
 #include <algorithm>
 
+#include "forward/common/displace_block.hpp"
 #include "forward/contact/contact_law.hpp"
 #include "forward/step/assemble.hpp"
 #include "forward/step/new_points.hpp"
 #include "forward/step/point_springs.hpp"
-#include "forward/step/update_blocks.hpp"
 
 namespace ddafit {
 namespace {

@@ -1,6 +1,5 @@
 #include "forward/step/update_blocks.hpp"
 
-#include <algorithm>
 #include <cmath>
 
 #include "forward/common/displace_block.hpp"
@@ -10,35 +9,6 @@
 #include "forward/step/point_springs.hpp"
 
 namespace ddafit {
-
-double max_vertex_displacement(const BlockSystem& s, const Eigen::VectorXd& d) {
-  double largest = 0.0;
-  for (int b = 0; b < static_cast<int>(s.blocks.size()); ++b)
-    if (s.blocks[b].unknown >= 0)
-      largest = std::max(largest, block_displacement(s, b, d.segment<6>(6 * s.blocks[b].unknown)));
-  return largest;
-}
-
-double max_penetration(const ContactSet& contacts, const StepParameters& step, double limit, double hard_limit,
-                       PointRef* which) {
-  double deepest = 0.0;
-  for (int k = 0; k < static_cast<int>(contacts.manifolds.size()); ++k) {
-    const ContactManifold& m = contacts.manifolds[k];
-    for (int q = 0; q < m.point_count; ++q) {
-      const ContactPoint& p = m.points[q];
-      const SpringState& c = p.spring;
-      // Only points this step drove deeper: one found already deep (a corner that came
-      // round a corner) cannot be mended by a stiffer spring within the step, only pushed
-      // back out over the next steps.
-      const double depth = std::max(spring_reference(p, step) - c.normal_gap, -c.normal_gap - (hard_limit - limit));
-      if (c.state != ContactState::Open && c.normal_gap < p.separation && depth > deepest) {
-        deepest = depth;
-        if (which) *which = {k, q};
-      }
-    }
-  }
-  return deepest;
-}
 
 void update_blocks(ImplicitStepContext& ctx, double dt) {
   BlockSystem& s = ctx.system;
