@@ -4,6 +4,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -29,6 +30,10 @@ struct Interface {
   double tensile_strength = 0.0;  // Pa, lost once the contact slides or opens
   double roughness_angle = 0.0;   // i, degrees; residual angle phi_b = phi_p - i
   double critical_distance_ratio = 0.01;  // d_c / length of the overriding block
+  // When the scene gives the roughness as a share of the peak angle (degradation_percent
+  // p), i = p/100 * phi_p is kept in step with phi_p by whoever changes either one (the
+  // reader, a study parameter); empty when roughness_angle was given.
+  std::optional<double> degradation_percent;
 };
 
 struct BlockInput {

@@ -15,21 +15,14 @@ namespace {
 namespace fs = std::filesystem;
 
 // Stand-in for the forward model: every summary value of every point is smooth in the
-// overridden values, so the fit, the profile and the covariance all have work to do, in
-// microseconds. A value that does not parse gives a failed run, as the real model would.
-SimulationResult stand_in(const std::string& scene_path, const inverse::Overrides& overrides) {
+// numbers a study parameter can set on the two-slider scene, so the fit, the profile and
+// the covariance all have work to do, in microseconds. A value the scene refuses never
+// reaches it: StudyScene::run() reports that run as an invalid scene, as for the real model.
+SimulationResult stand_in(const Scene& scene) {
   SimulationResult r;
-  double sum = 0.0;
-  for (const auto& [key, value] : overrides) {
-    try {
-      sum += std::stod(value);
-    } catch (const std::exception&) {
-      r.summary.status = RunStatus::InvalidScene;
-      r.summary.message = key + ": not a number";
-      return r;
-    }
-  }
-  const Scene scene = io::read_scene(scene_path, {});
+  double sum = scene.max_step + scene.duration;
+  for (const Interface& f : scene.interfaces)
+    sum += f.friction_angle + f.roughness_angle + f.cohesion + f.critical_distance_ratio;
   for (const MeasurePoint& m : scene.measure) {
     const double v = 1.0 + 0.01 * sum;
     r.summary.points.push_back({m.name, v, 1.1 * v, 0.5 * v, 0.6 * v, 2.0 + std::sin(sum), false});

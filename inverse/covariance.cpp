@@ -85,7 +85,7 @@ CovarianceReport covariance_at(Objective& objective, const Study& study, const s
     if (s.index[k] != profiled) continue;
     // Delta method on mu_b(p), with the derivative over one resolution (the same step).
     const double p = best[profiled], h = s.resolution[k];
-    const double phi = peak_friction_angle(study, best, study.parameters[profiled].key);
+    const double phi = objective.scene().peak_friction_angle(best, study.parameters[profiled].key);
     const double slope = (residual_friction(study, profiled, phi, p + h) - residual_friction(study, profiled, phi, p)) / h;
     c.mu_standard_deviation = std::abs(slope) * c.standard_deviation[k];
   }

@@ -15,22 +15,25 @@
 
 namespace ddafit::inverse {
 
-SimulationResult run_forward(const std::string& scene_path, const Overrides& overrides) {
+namespace {
+
+SimulationResult refused(RunStatus status, const std::string& message) {
   SimulationResult result;
-  try {
-    const Scene scene = io::read_scene(scene_path, overrides);
-    return simulate(scene);
-  } catch (const io::SceneReadError& e) {
-    result.summary.status = RunStatus::InvalidScene;
-    result.summary.message = e.what();
-  } catch (const std::exception& e) {
-    result.summary.status = RunStatus::Failed;
-    result.summary.message = std::string("forward run threw: ") + e.what();
-  } catch (...) {
-    result.summary.status = RunStatus::Failed;
-    result.summary.message = "forward run threw an unknown exception";
-  }
+  result.summary.status = status;
+  result.summary.message = message;
   return result;
+}
+
+}  // namespace
+
+SimulationResult run_forward(const Scene& scene) {
+  try {
+    return simulate(scene);
+  } catch (const std::exception& e) {
+    return refused(RunStatus::Failed, std::string("forward run threw: ") + e.what());
+  } catch (...) {
+    return refused(RunStatus::Failed, "forward run threw an unknown exception");
+  }
 }
 
 std::string exact_text(double value) {
@@ -39,11 +42,59 @@ std::string exact_text(double value) {
   return buf;
 }
 
-Overrides point_overrides(const Study& study, const std::vector<double>& values) {
-  Overrides out = study.settings;
-  for (size_t k = 0; k < study.parameters.size() && k < values.size(); ++k)
-    out.emplace_back(study.parameters[k].key, exact_text(values[k]));
-  return out;
+StudyScene::StudyScene(const Study& study) {
+  try {
+    // The fixed settings are the scene file's own text (any YAML value); read them once.
+    base_ = io::read_scene(study.scene_path, study.settings);
+  } catch (const io::SceneReadError& e) {
+    problem_ = e.what();
+    return;
+  }
+  for (size_t k = 0; k < study.parameters.size(); ++k) {
+    try {
+      parameters_.emplace_back(base_, study.parameters[k].key, study.scene_path);
+    } catch (const io::SceneReadError& e) {
+      problem_ = e.what();
+      rejected_parameter_ = static_cast<int>(k);
+      parameters_.clear();
+      return;
+    }
+  }
+}
+
+Scene StudyScene::at(const std::vector<double>& values) const {
+  if (!problem_.empty()) throw io::SceneReadError(problem_);
+  Scene scene = base_;
+  io::set_parameters(scene, parameters_, values);
+  return scene;
+}
+
+SimulationResult StudyScene::run(const std::vector<double>& values, const ForwardModel& forward) const {
+  Scene scene;
+  try {
+    scene = at(values);
+  } catch (const io::SceneReadError& e) {
+    return refused(RunStatus::InvalidScene, e.what());
+  } catch (const std::exception& e) {
+    return refused(RunStatus::Failed, std::string("setting the study's parameters threw: ") + e.what());
+  }
+  try {
+    return forward(scene);
+  } catch (const std::exception& e) {  // the forward model promises not to throw; be sure
+    return refused(RunStatus::Failed, std::string("forward run threw: ") + e.what());
+  }
+}
+
+double StudyScene::peak_friction_angle(const std::vector<double>& values, const std::string& key) const {
+  if (key.rfind("interfaces.", 0) != 0) return std::numeric_limits<double>::quiet_NaN();
+  const std::string rest = key.substr(11);
+  const std::string name = rest.substr(0, rest.rfind('.'));
+  try {
+    for (const Interface& i : at(values).interfaces)
+      if (i.name == name) return i.friction_angle;
+  } catch (const std::exception&) {
+  }
+  return std::numeric_limits<double>::quiet_NaN();
 }
 
 namespace {
@@ -112,27 +163,18 @@ std::string scene_input_hash(const Study& study) {
   return buf;
 }
 
-double peak_friction_angle(const Study& study, const std::vector<double>& values, const std::string& key) {
-  if (key.rfind("interfaces.", 0) != 0) return std::numeric_limits<double>::quiet_NaN();
-  const std::string rest = key.substr(11);
-  const std::string name = rest.substr(0, rest.find('.'));
-  try {
-    const Scene scene = io::read_scene(study.scene_path, point_overrides(study, values));
-    for (const Interface& i : scene.interfaces)
-      if (i.name == name) return i.friction_angle;
-  } catch (const std::exception&) {
-  }
-  return std::numeric_limits<double>::quiet_NaN();
-}
-
 void check_study_against_scene(const Study& study) {
+  const StudyScene scene(study);
+  if (scene.rejected_parameter() >= 0)
+    throw StudyError(study.path + ": parameters[" + std::to_string(scene.rejected_parameter()) +
+                     "].key: the scene rejects it: " + scene.problem());
   std::vector<double> start;
   for (const Parameter& p : study.parameters) start.push_back(p.discrete() ? p.levels.front() : p.start);
-  Scene scene;
+  Scene at_start;
   try {
-    scene = io::read_scene(study.scene_path, point_overrides(study, start));
+    at_start = scene.at(start);
   } catch (const io::SceneReadError& e) {
-    // Name the study entry whose override the scene rejected, when there is one.
+    // Name the study entry whose value the scene refused, when there is one.
     const std::string what = e.what();
     for (size_t k = 0; k < study.parameters.size(); ++k)
       if (what.find(study.parameters[k].key) != std::string::npos)
@@ -143,7 +185,7 @@ void check_study_against_scene(const Study& study) {
     const std::string& point = study.observations[k].point;
     std::string names;
     bool found = false;
-    for (const MeasurePoint& m : scene.measure) {
+    for (const MeasurePoint& m : at_start.measure) {
       found = found || m.name == point;
       names += (names.empty() ? "" : ", ") + m.name;
     }

@@ -68,7 +68,7 @@ BoundingFriction profile_friction(Objective& objective, const Study& study, cons
   f.best_value = best[parameter];
   const std::string rest = p.key.substr(std::string("interfaces.").size());
   f.interface = rest.substr(0, rest.find('.'));
-  f.peak_angle = peak_friction_angle(study, best, p.key);
+  f.peak_angle = objective.scene().peak_friction_angle(best, p.key);
   if (!std::isfinite(f.peak_angle)) {
     f.why_not = "the scene has no interface '" + f.interface + "' with a friction angle";
     return f;

@@ -134,7 +134,7 @@ InversionSummary run_inversion(const Study& study, const InversionOptions& optio
       best.history = std::move(hit->result.history);
     } else {
       const auto started = std::chrono::steady_clock::now();
-      SimulationResult again = forward(study.scene_path, point_overrides(study, best.best.values));
+      SimulationResult again = objective.scene().run(best.best.values, forward);
       ++out.history_reruns;
       cache.store(key, again, std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count(), true);
       best.history = std::move(again.history);

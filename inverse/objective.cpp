@@ -13,19 +13,8 @@ double summary_value(const PointSummary& p, const std::string& quantity) {
   return std::numeric_limits<double>::quiet_NaN();
 }
 
-SimulationResult run_guarded(const ForwardModel& forward, const std::string& scene_path, const Overrides& overrides) {
-  SimulationResult run;
-  try {
-    run = forward(scene_path, overrides);
-  } catch (const std::exception& ex) {  // the forward call promises not to throw; be sure
-    run.summary.status = RunStatus::Failed;
-    run.summary.message = std::string("forward run threw: ") + ex.what();
-  }
-  return run;
-}
-
 Objective::Objective(const Study& study, EvaluationCache& cache, ForwardModel forward)
-    : study_(study), cache_(cache), forward_(std::move(forward)) {}
+    : study_(study), scene_(study), cache_(cache), forward_(std::move(forward)) {}
 
 Evaluation Objective::score(const std::vector<double>& values, const SimulationSummary& summary) const {
   Evaluation e;
@@ -96,7 +85,7 @@ Evaluation Objective::record(const std::vector<double>& values, SimulationResult
       run = std::move(*made);
     } else {
       const auto t0 = std::chrono::steady_clock::now();
-      run = run_guarded(forward_, study_.scene_path, point_overrides(study_, values));
+      run = scene_.run(values, forward_);
       seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     }
     ++run_;

@@ -86,6 +86,8 @@ class Objective {
   void set_planned(long planned) { planned_ = planned; }
   Progress progress() const;
   const std::vector<Evaluation>& log() const { return log_; }
+  // The study's scene, read once; every run of this objective starts from it.
+  const StudyScene& scene() const { return scene_; }
   double wall_seconds_run() const { return seconds_run_; }
 
  private:
@@ -94,6 +96,7 @@ class Objective {
   Evaluation score(const std::vector<double>& values, const SimulationSummary& summary) const;
 
   const Study& study_;
+  StudyScene scene_;
   EvaluationCache& cache_;
   ForwardModel forward_;
   std::map<std::string, size_t> seen_;  // point key -> index in log_
@@ -104,9 +107,6 @@ class Objective {
   long cached_ = 0, run_ = 0, planned_ = 0, failed_ = 0, running_ = 0;
   double seconds_run_ = 0.0, seconds_cached_ = 0.0;
 };
-
-// forward(scene_path, overrides), with an exception turned into a failed run.
-SimulationResult run_guarded(const ForwardModel& forward, const std::string& scene_path, const Overrides& overrides);
 
 // A summary field by its name (summary_quantities()); NaN for an unknown name.
 double summary_value(const PointSummary& point, const std::string& quantity);

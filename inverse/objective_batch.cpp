@@ -1,6 +1,6 @@
 // Objective::evaluate_batch: independent points (a scan design, a profile's grid) run on
-// `jobs` worker threads. The forward model shares nothing between runs (a scene is read
-// and simulated per call), so workers only need their own results slot; everything the
+// `jobs` worker threads. The forward model shares nothing between runs (each copies the
+// study's scene, sets its parameters and simulates it), so workers only need their own results slot; everything the
 // Objective owns (log, cache, best point, progress) stays with the calling thread.
 #include <atomic>
 #include <chrono>
@@ -37,7 +37,7 @@ std::vector<Evaluation> Objective::evaluate_batch(const std::vector<std::vector<
       if (on_worker_start) on_worker_start();
       for (size_t i = next++; i < todo.size(); i = next++) {
         const auto t0 = std::chrono::steady_clock::now();
-        SimulationResult run = run_guarded(forward_, study_.scene_path, point_overrides(study_, todo[i]));
+        SimulationResult run = scene_.run(todo[i], forward_);
         const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
         std::lock_guard<std::mutex> lock(mutex);
         queue.push_back({i, std::move(run), seconds});

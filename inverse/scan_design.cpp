@@ -36,7 +36,7 @@ std::vector<std::vector<double>> level_combinations(const Study& study) {
 
 // The profiled parameter of the bounding friction (profile_parameter()), its interface
 // and peak angle; mu_b over the runs with chi2 <= best + threshold.
-FrictionSpread spread(const Study& study, const DesignResult& r, double threshold) {
+FrictionSpread spread(const Study& study, const StudyScene& scene, const DesignResult& r, double threshold) {
   FrictionSpread f;
   const int q = profile_parameter(study);
   if (q < 0) {
@@ -56,7 +56,7 @@ FrictionSpread spread(const Study& study, const DesignResult& r, double threshol
   f.mu_high = -INFINITY;
   for (const Evaluation& e : r.runs) {
     if (e.failed || e.chi2 > limit) continue;
-    const double peak = peak_friction_angle(study, e.values, p.key);
+    const double peak = scene.peak_friction_angle(e.values, p.key);
     if (!std::isfinite(peak)) continue;
     const double mu = residual_friction(study, q, peak, e.values[q]);
     f.mu_low = std::min(f.mu_low, mu);
@@ -122,8 +122,8 @@ DesignResult run_design(const Study& study, const InversionOptions& options, con
   r.runs = objective.evaluate_batch(points, options.jobs);
   for (size_t k = 0; k < r.runs.size(); ++k)
     if (!r.runs[k].failed && (r.best < 0 || r.runs[k].chi2 < r.runs[r.best].chi2)) r.best = static_cast<long>(k);
-  r.within1 = spread(study, r, 1.0);
-  r.within4 = spread(study, r, 4.0);
+  r.within1 = spread(study, objective.scene(), r, 1.0);
+  r.within4 = spread(study, objective.scene(), r, 4.0);
   if (design.kind == DesignKind::Morris) {
     MorrisDesign m;
     const size_t per_combo = unit_design(continuous_count(study), design, &m).size();

@@ -120,6 +120,15 @@ class StudyReader : public io::YamlChecks {
       if (!keys.insert(ps[k].key).second) fail(indexed("parameters", k) + ".key", "'" + ps[k].key + "' is set twice");
       continuous = continuous || !ps[k].discrete();
     }
+    // Both forms of one interface's roughness would overwrite each other in every run.
+    for (size_t k = 0; k < ps.size(); ++k)
+      if (const std::string tail = ".roughness_angle";
+          ps[k].key.size() > tail.size() && ps[k].key.compare(ps[k].key.size() - tail.size(), tail.size(), tail) == 0) {
+        const std::string stem = ps[k].key.substr(0, ps[k].key.size() - tail.size() + 1);
+        if (keys.count(stem + "degradation_percent"))
+          fail(indexed("parameters", k) + ".key", "'" + ps[k].key + "' and '" + stem +
+                   "degradation_percent' are two forms of one roughness; make one of them the parameter");
+      }
     if (!continuous) fail("parameters", "all are discrete levels; give at least one with lower, upper, start, resolution");
   }
 

@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "forward/io/scene_reader.hpp"
 #include "inverse/evaluation_cache.hpp"
 #include "inverse/forward_call.hpp"
 #include "inverse/inversion.hpp"
@@ -36,11 +37,14 @@ fs::path fresh_dir(const std::string& tag) {
   return dir;
 }
 
-// A study over the two sliders whose observations are a forward run at the truth.
+// A study over the two sliders whose observations are a forward run at the truth. The
+// truth's scene is the file read with its values written into the text (the CLI's --set),
+// the study's runs set them as numbers on a scene read once: a study that recovers the
+// truth also shows the two paths agree.
 fs::path twin_study(const std::string& tag, const std::string& method, int profile_points) {
   const SimulationResult truth =
-      run_forward(kScene, {{"interfaces.clay.degradation_percent", exact_text(kTrueDegradation)},
-                           {"interfaces.joint.roughness_angle", exact_text(kTrueRoughness)}});
+      run_forward(io::read_scene(kScene, {{"interfaces.clay.degradation_percent", exact_text(kTrueDegradation)},
+                                          {"interfaces.joint.roughness_angle", exact_text(kTrueRoughness)}}));
   EXPECT_EQ(truth.summary.status, RunStatus::Completed) << truth.summary.message;
   std::string obs;
   for (const PointSummary& p : truth.summary.points)
@@ -197,19 +201,25 @@ TEST(InverseCovariance, WarnsWhenTheDataCannotConstrainTheParameters) {
   EXPECT_FALSE(c.computed);  // a pseudo-inverse would look like an answer: none is given
 }
 
+// The degradation percent a study parameter gave an interface of the scene (NaN if none).
+double degradation_of(const Scene& scene, const std::string& interface) {
+  for (const Interface& f : scene.interfaces)
+    if (f.name == interface && f.degradation_percent) return *f.degradation_percent;
+  return NAN;
+}
+
 // A forward model that counts its runs and fails above 45 % degradation.
 struct CountingForward {
   int* calls;
-  SimulationResult operator()(const std::string& scene, const Overrides& overrides) const {
+  SimulationResult operator()(const Scene& scene) const {
     ++*calls;
-    for (const auto& [key, value] : overrides)
-      if (key == "interfaces.clay.degradation_percent" && std::stod(value) > 45.0) {
-        SimulationResult failed;
-        failed.summary.status = RunStatus::Failed;
-        failed.summary.message = "test: step cut below the minimum";
-        return failed;
-      }
-    return run_forward(scene, overrides);
+    if (degradation_of(scene, "clay") > 45.0) {
+      SimulationResult failed;
+      failed.summary.status = RunStatus::Failed;
+      failed.summary.message = "test: step cut below the minimum";
+      return failed;
+    }
+    return run_forward(scene);
   }
 };
 
@@ -232,18 +242,18 @@ TEST(InverseObjective, FailedRunsAreValuesAndNoPointRunsTwice) {
   EXPECT_FALSE(s.levels.front().best.failed);
 }
 
-// A forward model that records every run's overrides.
+// A forward model that records the scene of every run.
 struct RecordingForward {
-  std::vector<Overrides>* runs;
-  SimulationResult operator()(const std::string& scene, const Overrides& overrides) const {
-    runs->push_back(overrides);
-    return run_forward(scene, overrides);
+  std::vector<Scene>* runs;
+  SimulationResult operator()(const Scene& scene) const {
+    runs->push_back(scene);
+    return run_forward(scene);
   }
 };
 
-double override_value(const Overrides& overrides, const std::string& key) {
-  for (const auto& [k, v] : overrides)
-    if (k == key) return std::stod(v);
+double roughness_of(const Scene& scene, const std::string& interface) {
+  for (const Interface& f : scene.interfaces)
+    if (f.name == interface) return f.roughness_angle;
   return NAN;
 }
 
@@ -265,7 +275,7 @@ TEST(InverseLevels, CoarseToFineStartsEachLevelAtTheLastBestAndReportsTheFinest)
   InversionOptions options;
   options.out_dir = fresh_dir("c2f/out").string();
   options.model_version = "test";
-  std::vector<Overrides> runs;
+  std::vector<Scene> runs;
   const InversionSummary s = run_inversion(study, options, RecordingForward{&runs});
   ASSERT_EQ(s.levels.size(), 2u);
   EXPECT_EQ(s.best_level, 1) << "coarse to fine reports the finest (last) level";
@@ -273,12 +283,11 @@ TEST(InverseLevels, CoarseToFineStartsEachLevelAtTheLastBestAndReportsTheFinest)
   const LevelFit& fine = s.levels[1];
   ASSERT_FALSE(coarse.best.failed);
   EXPECT_LE(fine.fit.evaluations, 12);
-  const auto first_fine = std::find_if(runs.begin(), runs.end(), [](const Overrides& o) {
-    return override_value(o, "time.step") == 0.001;
-  });
+  const auto first_fine =
+      std::find_if(runs.begin(), runs.end(), [](const Scene& s) { return s.max_step == 0.001; });
   ASSERT_NE(first_fine, runs.end());
-  EXPECT_EQ(override_value(*first_fine, "interfaces.clay.degradation_percent"), coarse.best.values[1]);
-  EXPECT_EQ(override_value(*first_fine, "interfaces.joint.roughness_angle"), coarse.best.values[2]);
+  EXPECT_EQ(degradation_of(*first_fine, "clay"), coarse.best.values[1]);
+  EXPECT_EQ(roughness_of(*first_fine, "joint"), coarse.best.values[2]);
   EXPECT_NEAR(fine.best.values[1], kTrueDegradation, 2 * kDegradationResolution);
   EXPECT_NEAR(fine.best.values[2], kTrueRoughness, 2 * kRoughnessResolution);
 }

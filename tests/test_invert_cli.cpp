@@ -91,6 +91,19 @@ TEST(InvertCli, BadStudiesGetOneLineNamingTheKeyAndExitCode2) {
        study_text("  - {name: d, key: interfaces.clay.degradatoin, lower: 0, upper: 1, start: 0.5, resolution: 0.1}\n",
                   kObservations),
        "parameters[0].key"},
+      {"switch_as_parameter",
+       study_text("  - {name: s, key: control.plane_strain, lower: 0, upper: 1, start: 0.5, resolution: 0.1}\n",
+                  kObservations),
+       "parameters[0].key"},
+      {"interface_not_in_scene",
+       study_text("  - {name: s, key: interfaces.sand.friction_angle, lower: 5, upper: 30, start: 20, resolution: 1}\n",
+                  kObservations),
+       "parameters[0].key"},
+      {"two_forms_of_one_roughness",
+       study_text(p + "lower: 0, upper: 60, start: 10, resolution: 0.5}\n"
+                      "  - {name: i, key: interfaces.clay.roughness_angle, lower: 0, upper: 9, start: 2, resolution: 0.5}\n",
+                  kObservations),
+       "parameters[1].key"},
   };
   for (const BadStudy& c : cases) {
     const fs::path dir = fresh_dir(std::string("invert_bad/") + c.tag);

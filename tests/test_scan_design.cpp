@@ -37,9 +37,9 @@ InversionOptions options_in(const fs::path& dir, bool resume, int jobs) {
 
 // The real twin forward model, counting its calls (from any thread).
 ForwardModel counting(std::atomic<int>* calls) {
-  return [calls](const std::string& scene, const Overrides& overrides) {
+  return [calls](const Scene& scene) {
     ++*calls;
-    return run_forward(scene, overrides);
+    return run_forward(scene);
   };
 }
 

@@ -239,7 +239,7 @@ TEST(SceneReader, WrittenSceneReadsBackExactly) {
   // The mesh generator writes scenes with scene_to_yaml; nothing may drift on the way.
   Scene s = parse_scene(kExample, "t");
   s.gravity = Vec2(0.1, -9.80665);
-  s.interfaces.push_back({"joint", 1.0 / 3.0, 1e5, 2.5e4, 0.2, 0.05});
+  s.interfaces.push_back({"joint", 1.0 / 3.0, 1e5, 2.5e4, 0.2, 0.05, std::nullopt});
   s.contact_rules[0].interface = 1;
   s.blocks[1].velocity = Vec2(1.0 / 7.0, -2e-300);
   s.blocks[1].angular_velocity = -0.3;

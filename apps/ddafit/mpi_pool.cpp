@@ -29,7 +29,8 @@ SimulationResult failed(const std::string& why) {
 // One forward run in a child process; the child writes its encoded result to a pipe.
 // Returns the encoded result, or an empty string and `why` when the child crashed, hung
 // past the timeout (then it is killed) or wrote nothing.
-std::string run_in_child(const inverse::Study& study, const std::vector<double>& values, double timeout, std::string& why) {
+std::string run_in_child(const inverse::StudyScene& scene, const std::vector<double>& values, double timeout,
+                         std::string& why) {
   int fds[2];
   if (pipe(fds) != 0) {
     why = "cannot create a pipe for the run";
@@ -39,7 +40,7 @@ std::string run_in_child(const inverse::Study& study, const std::vector<double>&
   const pid_t pid = fork();
   if (pid == 0) {
     close(fds[0]);
-    const SimulationResult r = inverse::run_forward(study.scene_path, inverse::point_overrides(study, values));
+    const SimulationResult r = scene.run(values, inverse::run_forward);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     const std::string text = encode_run(r, seconds);
     for (size_t at = 0; at < text.size();) {
@@ -148,6 +149,7 @@ void mpi_release_workers(const MpiWorld& world) {
 
 void mpi_worker(const inverse::Study& study, int threads, double timeout) {
   set_worker_threads(threads);
+  const inverse::StudyScene scene(study);  // read once per worker; each child copies it
   while (true) {
     MPI_Status status;
     MPI_Probe(0, MPI_ANY_TAG, MPI_COMM_WORLD, &status);
@@ -158,8 +160,8 @@ void mpi_worker(const inverse::Study& study, int threads, double timeout) {
     if (status.MPI_TAG == kTagStop) return;
     const std::vector<double> values(message.begin() + 1, message.end());
     // A crash or a hang is retried once: a node's hiccup should not count as physics.
-    std::string why, text = run_in_child(study, values, timeout, why);
-    if (text.empty()) text = run_in_child(study, values, timeout, why);
+    std::string why, text = run_in_child(scene, values, timeout, why);
+    if (text.empty()) text = run_in_child(scene, values, timeout, why);
     if (text.empty()) text = encode_run(failed(why + ", twice (worker rank " + std::to_string(status.MPI_SOURCE) + ")"), 0.0);
     char index[21];
     std::snprintf(index, sizeof index, "%-20lu", static_cast<unsigned long>(message[0]));

@@ -96,7 +96,7 @@ int run_slurm_task(const ScanArgs& args, const inverse::Study& study) {
     return kExitBadInput;
   }
   const auto t0 = std::chrono::steady_clock::now();
-  const SimulationResult run = inverse::run_forward(study.scene_path, inverse::point_overrides(study, values));
+  const SimulationResult run = inverse::StudyScene(study).run(values, inverse::run_forward);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   nlohmann::json j;
   j["values"] = values;

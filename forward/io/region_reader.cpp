@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "forward/geometry.hpp"
+#include "forward/mesh/region.hpp"
 
 namespace ddafit::io {
 namespace {
@@ -81,12 +82,8 @@ void read_regions(const YamlChecks& c, const YAML::Node& mesh, const YAML::Node&
     c.opt_number(mesh, "mesh", "min_area_ratio", s.mesh.min_area_ratio);
     c.opt_number(mesh, "mesh", "min_angle", s.mesh.min_angle);
     c.opt_number(mesh, "mesh", "min_edge_ratio", s.mesh.min_edge_ratio);
-    if (!(s.mesh.min_area_ratio >= 0.0 && s.mesh.min_area_ratio < 1.0)) c.fail("mesh.min_area_ratio", "must be in [0, 1)");
-    if (!(s.mesh.min_angle >= 0.0 && s.mesh.min_angle < 60.0)) c.fail("mesh.min_angle", "must be in [0, 60) degrees");
-    if (!(s.mesh.min_edge_ratio >= 0.0 && s.mesh.min_edge_ratio < 0.5)) c.fail("mesh.min_edge_ratio", "must be in [0, 0.5)");
     c.opt_number(mesh, "mesh", "max_arrangement_edges", s.mesh.max_arrangement_edges);
-    if (!(s.mesh.max_arrangement_edges >= 1e3 && s.mesh.max_arrangement_edges <= 1e8))
-      c.fail("mesh.max_arrangement_edges", "must be in [1e3, 1e8] (1e8 edges is about ten minutes of cutting)");
+    for (const SceneError& e : validate_mesh_settings(s.mesh)) c.fail(e.key, e.problem);
   }
   if (!regions) return;
   c.list(regions, "regions");

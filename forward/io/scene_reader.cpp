@@ -115,6 +115,7 @@ class Reader : public YamlChecks {
         const double p = number(n, path + ".degradation_percent");
         if (!(p >= 0 && p <= 100))
           fail(path + ".degradation_percent", "is " + n.Scalar() + "; must be in [0, 100]");
+        in.degradation_percent = p;
         in.roughness_angle = p / 100.0 * in.friction_angle;
       }
       s.interfaces.push_back(in);

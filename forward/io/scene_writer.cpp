@@ -73,10 +73,15 @@ std::string scene_to_yaml(const Scene& s) {
     out << Key << "interfaces" << Value << BeginMap;
     for (const Interface& f : s.interfaces) {
       out << Key << f.name << Value;
+      // The roughness as the scene gave it, so that a later change of the peak angle moves
+      // a percentage-given roughness with it.
       put_flow_map(out, {{"friction_angle", num(f.friction_angle)},
                          {"cohesion", num(f.cohesion)},
                          {"tensile_strength", num(f.tensile_strength)},
-                         {"roughness_angle", num(f.roughness_angle)},
+                         f.degradation_percent ? std::pair<std::string, std::string>("degradation_percent",
+                                                                                     num(*f.degradation_percent))
+                                               : std::pair<std::string, std::string>("roughness_angle",
+                                                                                     num(f.roughness_angle)),
                          {"critical_distance_ratio", num(f.critical_distance_ratio)}});
     }
     out << EndMap;

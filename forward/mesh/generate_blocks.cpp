@@ -6,6 +6,26 @@
 
 namespace ddafit {
 
+std::vector<SceneError> validate_mesh_settings(const MeshSettings& m) {
+  std::vector<SceneError> errors;
+  const auto expect = [&](bool ok, const char* key, double value, const char* rule) {
+    if (ok) return;
+    char text[64];
+    std::snprintf(text, sizeof text, "is %g; ", value);
+    errors.push_back({key, text + std::string(rule)});
+  };
+  expect(m.block_size == 0.0 || (m.block_size > 0.0 && m.block_size <= 1e6), "mesh.block_size", m.block_size,
+         "must be in (0, 1e6] m");
+  expect(m.min_area_ratio >= 0.0 && m.min_area_ratio < 1.0, "mesh.min_area_ratio", m.min_area_ratio,
+         "must be in [0, 1)");
+  expect(m.min_angle >= 0.0 && m.min_angle < 60.0, "mesh.min_angle", m.min_angle, "must be in [0, 60) degrees");
+  expect(m.min_edge_ratio >= 0.0 && m.min_edge_ratio < 0.5, "mesh.min_edge_ratio", m.min_edge_ratio,
+         "must be in [0, 0.5)");
+  expect(m.max_arrangement_edges >= 1e3 && m.max_arrangement_edges <= 1e8, "mesh.max_arrangement_edges",
+         m.max_arrangement_edges, "must be in [1e3, 1e8] (1e8 edges is about ten minutes of cutting)");
+  return errors;
+}
+
 std::vector<RegionMesh> generate_blocks(Scene& scene, std::string& problem) {
   if (scene.explicit_block_count < 0) scene.explicit_block_count = static_cast<int>(scene.blocks.size());
   std::vector<BlockInput> blocks(scene.blocks.begin(), scene.blocks.begin() + scene.explicit_block_count);

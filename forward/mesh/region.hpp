@@ -33,6 +33,10 @@ struct RegionMesh {
 // region, or sets `problem` ("regions[K]: ...") and leaves the scene unchanged.
 std::vector<RegionMesh> generate_blocks(Scene& scene, std::string& problem);
 
+// The ranges of the mesh settings (block_size 0 = unset; else in (0, 1e6] m), checked
+// before any cutting: by the reader and when a study parameter changes one.
+std::vector<SceneError> validate_mesh_settings(const MeshSettings& mesh);
+
 // A set's spacing in m: its own `spacing`, else spacing_ratio x the region's block size.
 inline double joint_spacing(const JointSet& set, double block_size) {
   return set.spacing > 0.0 ? set.spacing : set.spacing_ratio * block_size;
