@@ -7,6 +7,8 @@
 #include <cstring>
 #include <nlohmann/json.hpp>
 
+#include "forward/io/run_json.hpp"
+
 namespace ddafit::inverse {
 
 std::string point_key(const Study& study, const std::vector<double>& values) {
@@ -45,9 +47,8 @@ constexpr int kHistoryColumns = 8;  // time, point, x, y, ux, uy, vx, vy
 nlohmann::json summary_json(const SimulationSummary& s) {
   nlohmann::json points = nlohmann::json::array();
   for (const PointSummary& p : s.points) {
-    nlohmann::json point = {{"name", p.name}};
-    for (const PointQuantity& q : kPointQuantities)
-      point[q.name] = q.flag ? nlohmann::json(q.get(p) != 0.0) : nlohmann::json(q.get(p));
+    nlohmann::json point = io::point_json<nlohmann::json>(p);
+    point["name"] = p.name;
     points.push_back(point);
   }
   return {{"points", points}, {"warnings", s.warnings}};
@@ -58,8 +59,7 @@ SimulationSummary summary_from_json(const nlohmann::json& j) {
   for (const auto& p : j.at("points")) {
     PointSummary q;
     q.name = p.at("name").get<std::string>();
-    for (const PointQuantity& k : kPointQuantities)
-      k.set(q, k.flag ? (p.at(k.name).get<bool>() ? 1.0 : 0.0) : p.at(k.name).get<double>());
+    io::read_point_json(p, q);
     s.points.push_back(q);
   }
   s.warnings = j.at("warnings").get<std::vector<std::string>>();

@@ -7,23 +7,12 @@
 #include <cstdlib>
 #include <filesystem>
 
+#include "forward/io/gnuplot.hpp"
 #include "inverse/report.hpp"
 
 namespace ddafit::inverse {
 
 namespace {
-
-bool gnuplot(const std::string& script, std::string& reason) {
-  if (std::system("command -v gnuplot > /dev/null 2>&1") != 0) {
-    reason = "gnuplot is not installed (apt-get install gnuplot-nox); report.md and report.json are written";
-    return false;
-  }
-  if (std::system(("gnuplot '" + script + "' 2> '" + script + ".log'").c_str()) != 0) {
-    reason = "gnuplot failed; see " + script + ".log";
-    return false;
-  }
-  return true;
-}
 
 bool is_displacement(const std::string& q) { return q.find("displacement") != std::string::npos; }
 bool is_velocity(const std::string& q) { return q.find("velocity") != std::string::npos; }
@@ -123,7 +112,7 @@ bool plot_report(const std::string& dir, const Study& study, const InversionSumm
     }
   }
   gp.close();
-  return gnuplot(script, reason);
+  return io::run_gnuplot(script, "report.md and report.json", reason);
 }
 
 }  // namespace ddafit::inverse

@@ -12,9 +12,10 @@
 #include <iostream>
 #include <system_error>
 
+#include "forward/io/gnuplot.hpp"
 #include "apps/ddafit/commands.hpp"
 #include "apps/ddafit/exit_codes.hpp"
-#include "apps/ddafit/output_files.hpp"
+#include "forward/io/run_files.hpp"
 #include "apps/ddafit/plots.hpp"
 #include "apps/ddafit/vtk_reader.hpp"
 
@@ -115,7 +116,7 @@ int run_animate(const AnimateArgs& args) {
   top_speed = std::ceil(top_speed);
 
   const fs::path out = args.out.empty() ? dir / "animation" : fs::path(args.out);
-  if (const std::string problem = prepare_output_folder(out.string()); !problem.empty()) {
+  if (const std::string problem = io::prepare_output_folder(out.string()); !problem.empty()) {
     std::cerr << problem << "\n";
     return kExitBadInput;
   }
@@ -154,7 +155,8 @@ int run_animate(const AnimateArgs& args) {
     return kExitBadInput;
   }
   std::string reason;
-  if (!run_gnuplot((out / "frames.gp").string(), reason) || !run_gnuplot((out / "animation.gp").string(), reason)) {
+  if (!io::run_gnuplot((out / "frames.gp").string(), "the data files", reason) ||
+      !io::run_gnuplot((out / "animation.gp").string(), "the data files", reason)) {
     std::cerr << "ddafit animate: " << reason << "\n";
     return kExitRunFailed;
   }

@@ -10,9 +10,10 @@
 #include <fstream>
 #include <iostream>
 
+#include "forward/io/gnuplot.hpp"
 #include "apps/ddafit/commands.hpp"
 #include "apps/ddafit/exit_codes.hpp"
-#include "apps/ddafit/output_files.hpp"
+#include "forward/io/run_files.hpp"
 #include "apps/ddafit/plots.hpp"
 #include "forward/simulation.hpp"
 
@@ -45,7 +46,7 @@ void write_chart(const std::string& dir, const std::vector<BenchRow>& rows, std:
      << "plot '" << dir << "/bench.csv' using 2:($8/$5) every ::1 with linespoints lw 2 title 'ddafit', "
      << first_cost << "*(x/" << first.blocks << ")**1.2 with lines dt 2 title 'N^{1.2} from the first row'\n";
   gp.close();
-  run_gnuplot(dir + "/bench.gp", reason);
+  io::run_gnuplot(dir + "/bench.gp", "the data files", reason);
 }
 
 }  // namespace
@@ -55,7 +56,7 @@ int run_bench(const BenchArgs& args) {
     std::cerr << "ddafit bench: need at least one --sizes value and a positive --duration\n";
     return kExitBadInput;
   }
-  if (const std::string problem = prepare_output_folder(args.out); !problem.empty()) {
+  if (const std::string problem = io::prepare_output_folder(args.out); !problem.empty()) {
     std::cerr << problem << "\n";
     return kExitBadInput;
   }

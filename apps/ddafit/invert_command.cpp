@@ -11,9 +11,10 @@
 #include "forward/model_revision.hpp"
 #include "apps/ddafit/commands.hpp"
 #include "apps/ddafit/exit_codes.hpp"
-#include "apps/ddafit/interrupt.hpp"
-#include "apps/ddafit/output_files.hpp"
-#include "apps/ddafit/thread_budget.hpp"
+#include "batch/stop_signals.hpp"
+#include "apps/ddafit/clock_text.hpp"
+#include "forward/io/run_files.hpp"
+#include "batch/thread_budget.hpp"
 #include "inverse/evaluation_cache.hpp"
 #include "inverse/forward_call.hpp"
 #include "inverse/inversion.hpp"
@@ -88,7 +89,7 @@ int run_invert(const InvertArgs& given) {
     print_plan(study, budget, args.out);
     return kExitSuccess;
   }
-  if (const std::string problem = prepare_output_folder(args.out); !problem.empty()) {
+  if (const std::string problem = io::prepare_output_folder(args.out); !problem.empty()) {
     std::cerr << problem << "\n";
     return kExitBadInput;
   }
@@ -100,7 +101,7 @@ int run_invert(const InvertArgs& given) {
   options.jobs = args.jobs;
   const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   const int per_run = args.threads > 0 ? args.threads : std::max(1, cores / args.jobs);
-  options.on_worker_start = [per_run] { set_worker_threads(per_run); };
+  options.on_worker_start = [per_run] { batch::set_worker_threads(per_run); };
   if (!args.quiet) {
     options.on_progress = [](const inverse::Progress& p) {
       // The plan counts the fits and the profile grid; the bisection of the profile's
@@ -117,7 +118,7 @@ int run_invert(const InvertArgs& given) {
   options.on_log = [quiet = args.quiet](const std::string& line) {
     if (!quiet) std::cerr << "\n  note: " << line << "\n";
   };
-  exit_on_stop_signals("ddafit invert: interrupted; every finished forward run is kept in " + args.out +
+  batch::exit_on_stop_signals("ddafit invert: interrupted; every finished forward run is kept in " + args.out +
                        "/evaluations.sqlite: run the same command with --resume to go on from there\n");
   inverse::InversionSummary summary;
   try {

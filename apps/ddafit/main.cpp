@@ -8,8 +8,8 @@
 
 #include "apps/ddafit/commands.hpp"
 #include "apps/ddafit/exit_codes.hpp"
-#include "apps/ddafit/mpi_pool.hpp"
-#include "apps/ddafit/thread_budget.hpp"
+#include "batch/mpi_pool.hpp"
+#include "batch/thread_budget.hpp"
 
 namespace {
 
@@ -212,14 +212,14 @@ int main(int argc, char** argv) {
     std::cerr << "ddafit: " << e.what() << " (ddafit --help)\n";
     return kExitBadInput;
   }
-  set_thread_budget(threads);
+  ddafit::batch::set_thread_budget(threads);
   sc.threads = threads;
   inv.threads = threads;
   // Under mpirun every rank runs this; `scan` splits into a manager and workers, and the
   // guard ends MPI on every way out.
-  const MpiWorld world = mpi_start(&argc, &argv);
+  const ddafit::batch::MpiWorld world = ddafit::batch::mpi_start(&argc, &argv);
   struct MpiGuard {
-    ~MpiGuard() { mpi_stop(); }
+    ~MpiGuard() { ddafit::batch::mpi_stop(); }
   } mpi_guard;
   sc.mpi_rank = world.rank;
   sc.mpi_size = world.size;

@@ -7,7 +7,7 @@
 
 #include "apps/ddafit/commands.hpp"
 #include "apps/ddafit/exit_codes.hpp"
-#include "apps/ddafit/output_files.hpp"
+#include "forward/io/run_files.hpp"
 #include "apps/ddafit/plots.hpp"
 #include "apps/ddafit/vtk_writer.hpp"
 #include "forward/io/scene_reader.hpp"
@@ -25,7 +25,7 @@ int run_mesh(const MeshArgs& args) {
     std::cerr << args.scene << ": " << problem << "\n";
     return kExitBadInput;
   }
-  if (const std::string problem = prepare_output_folder(args.out); !problem.empty()) {
+  if (const std::string problem = io::prepare_output_folder(args.out); !problem.empty()) {
     std::cerr << problem << "\n";
     return kExitBadInput;
   }

@@ -5,20 +5,9 @@
 #include <cstdlib>
 #include <filesystem>
 
-namespace ddafit::app {
+#include "forward/io/gnuplot.hpp"
 
-bool run_gnuplot(const std::string& script_path, std::string& reason) {
-  if (std::system("command -v gnuplot > /dev/null 2>&1") != 0) {
-    reason = "gnuplot is not installed (apt-get install gnuplot-nox); the data files are written";
-    return false;
-  }
-  const std::string cmd = "gnuplot '" + script_path + "' 2> '" + script_path + ".log'";
-  if (std::system(cmd.c_str()) != 0) {
-    reason = "gnuplot failed; see " + script_path + ".log";
-    return false;
-  }
-  return true;
-}
+namespace ddafit::app {
 
 bool plot_blocks(const std::string& dir, const Scene& scene, std::string& reason) {
   const std::filesystem::path d(dir);
@@ -40,7 +29,7 @@ bool plot_blocks(const std::string& dir, const Scene& scene, std::string& reason
     gp.print("plot '{}' with filledcurves lc rgb '#cccccc', '{}' with lines lc rgb '#202020' lw 0.6\n",
              (d / "blocks_fixed.dat").string(), (d / "blocks_free.dat").string());
   }
-  return run_gnuplot(script, reason);
+  return io::run_gnuplot(script, "the data files", reason);
 }
 
 namespace {
@@ -81,7 +70,7 @@ bool plot_configuration(const std::string& dir, const Scene& scene, const std::v
              (d / "configuration_fixed.dat").string(), (d / "configuration_initial.dat").string(), width,
              (d / "configuration_final.dat").string(), width);
   }
-  return run_gnuplot(script, reason);
+  return io::run_gnuplot(script, "the data files", reason);
 }
 
 bool plot_history(const std::string& dir, const Scene& scene, const std::string& title, std::string& reason,
@@ -146,7 +135,7 @@ bool plot_history(const std::string& dir, const Scene& scene, const std::string&
     lateral.insert(lateral.size() - 1, legend);
     gp.print("{}", lateral);
   }
-  return run_gnuplot(script, reason);
+  return io::run_gnuplot(script, "the data files", reason);
 }
 
 }  // namespace ddafit::app

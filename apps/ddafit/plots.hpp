@@ -9,9 +9,6 @@
 
 namespace ddafit::app {
 
-// Runs gnuplot on a script; returns false (with a reason) when it cannot.
-bool run_gnuplot(const std::string& script_path, std::string& reason);
-
 // blocks.png: free blocks outlined, fixed blocks shaded.
 bool plot_blocks(const std::string& dir, const Scene& scene, std::string& reason);
 

@@ -11,12 +11,13 @@
 
 #include "apps/ddafit/commands.hpp"
 #include "apps/ddafit/exit_codes.hpp"
-#include "apps/ddafit/interrupt.hpp"
-#include "apps/ddafit/mpi_pool.hpp"
-#include "apps/ddafit/output_files.hpp"
+#include "batch/stop_signals.hpp"
+#include "batch/mpi_pool.hpp"
+#include "apps/ddafit/clock_text.hpp"
+#include "forward/io/run_files.hpp"
 #include "apps/ddafit/scan_plots.hpp"
 #include "apps/ddafit/slurm_scan.hpp"
-#include "apps/ddafit/thread_budget.hpp"
+#include "batch/thread_budget.hpp"
 #include "forward/model_revision.hpp"
 #include "inverse/evaluation_cache.hpp"
 #include "inverse/inversion.hpp"
@@ -147,15 +148,15 @@ int run_scan(const ScanArgs& args) {
   if (!args.task_dir.empty()) return run_slurm_task(args, study);
   if (args.mpi_rank > 0) {
     // A worker: forward runs for rank 0 until it says stop; it writes and prints nothing.
-    mpi_worker(study, per_run, args.run_timeout);
+    batch::mpi_worker(study, per_run, args.run_timeout);
     return kExitSuccess;
   }
   // Rank 0 under mpirun: whatever way this returns, the workers are told to stop.
-  const MpiWorld world{args.mpi_rank, args.mpi_size};
+  const batch::MpiWorld world{args.mpi_rank, args.mpi_size};
   struct Release {
-    MpiWorld world;
+    batch::MpiWorld world;
     ~Release() {
-      if (world.size > 1) mpi_release_workers(world);
+      if (world.size > 1) batch::mpi_release_workers(world);
     }
   } release{world};
   inverse::InversionOptions options;
@@ -164,12 +165,12 @@ int run_scan(const ScanArgs& args) {
   options.model_version = std::string(DDAFIT_VERSION) + "+" + kModelRevision;
   options.on_log = [](const std::string& line) { std::cerr << "note: " << line << "\n"; };
   options.jobs = args.jobs;
-  options.on_worker_start = [per_run] { set_worker_threads(per_run); };
+  options.on_worker_start = [per_run] { batch::set_worker_threads(per_run); };
   if (world.size > 1) {
-    options.batch_runner = mpi_batch_runner(world);
+    options.batch_runner = batch::mpi_batch_runner(world);
     options.jobs = world.size - 1;  // runs at a time, for the ETA
   }
-  if (args.jobs > 1) set_worker_threads(per_run);
+  if (args.jobs > 1) batch::set_worker_threads(per_run);
 
   int profiled = -1;
   std::vector<std::vector<double>> points;
@@ -224,11 +225,11 @@ int run_scan(const ScanArgs& args) {
     if (missing > 0) return kExitRunFailed;
     options.resume = true;  // every point is now in the cache: the report comes from it
   }
-  if (const std::string problem = prepare_output_folder(args.out); !problem.empty()) {
+  if (const std::string problem = io::prepare_output_folder(args.out); !problem.empty()) {
     std::cerr << problem << "\n";
     return kExitBadInput;
   }
-  exit_on_stop_signals("ddafit scan: interrupted; every finished forward run is kept in " + args.out +
+  batch::exit_on_stop_signals("ddafit scan: interrupted; every finished forward run is kept in " + args.out +
                        "/evaluations.sqlite: run the same command with --resume to go on from there\n");
   options.on_progress = [](const inverse::Progress& p) {
     std::cerr << fmt::format("\r  done {} of {} ({} cached, {} failed), {} running  best chi2 {:.4g}  ETA {}   ",

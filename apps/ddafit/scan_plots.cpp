@@ -1,5 +1,7 @@
 #include "apps/ddafit/scan_plots.hpp"
 
+#include "forward/io/gnuplot.hpp"
+
 #include <fmt/os.h>
 
 #include <filesystem>
@@ -59,7 +61,7 @@ bool plot_scan(const std::string& dir, const inverse::Study& study, const invers
                (d / "morris.png").string(), (d / "morris.dat").string());
     }
   }
-  return run_gnuplot(script, reason);
+  return io::run_gnuplot(script, "the data files", reason);
 }
 
 }  // namespace ddafit::app

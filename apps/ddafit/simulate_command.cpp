@@ -6,8 +6,9 @@
 
 #include "apps/ddafit/commands.hpp"
 #include "apps/ddafit/exit_codes.hpp"
-#include "apps/ddafit/interrupt.hpp"
-#include "apps/ddafit/output_files.hpp"
+#include "batch/stop_signals.hpp"
+#include "apps/ddafit/clock_text.hpp"
+#include "forward/io/run_files.hpp"
 #include "apps/ddafit/plots.hpp"
 #include "apps/ddafit/vtk_writer.hpp"
 #include "forward/io/scene_reader.hpp"
@@ -64,7 +65,7 @@ int run_simulate(const SimulateArgs& args) {
   } else {
     if (!load_scene(args.scene, args.sets, scene)) return kExitBadInput;
   }
-  if (const std::string problem = prepare_output_folder(args.out); !problem.empty()) {
+  if (const std::string problem = io::prepare_output_folder(args.out); !problem.empty()) {
     std::cerr << problem << "\n";
     return kExitBadInput;
   }
@@ -108,16 +109,16 @@ int run_simulate(const SimulateArgs& args) {
                 << std::flush;
     };
   }
-  note_stop_signals();
-  hooks.should_stop = [] { return stop_signal() != 0; };
+  batch::note_stop_signals();
+  hooks.should_stop = [] { return batch::stop_signal() != 0; };
   const SimulationResult result = simulate(scene, hooks);
   if (!args.quiet) std::cerr << "\r" << std::string(72, ' ') << "\r";
 
   const std::string history = (std::filesystem::path(args.out) / "history.csv").string();
   const std::string summary = (std::filesystem::path(args.out) / "summary.json").string();
   try {
-    write_history_csv(history, scene, result);
-    write_summary_json(summary, label, result);
+    io::write_history_csv(history, scene, result);
+    io::write_summary_json(summary, label, result);
   } catch (const std::exception& e) {
     std::cerr << args.out << ": --out: " << e.what() << "\n";
     return kExitBadInput;
@@ -137,7 +138,7 @@ int run_simulate(const SimulateArgs& args) {
   }
   if (s.status == RunStatus::Interrupted) {
     std::cerr << label << ": " << s.message << "; the history so far and the summary are in " << args.out << "\n";
-    return exit_code_for(stop_signal());
+    return batch::exit_code_for(batch::stop_signal());
   }
   if (!vtk_problem.empty()) std::cerr << args.out << ": VTK snapshots stopped: " << vtk_problem << "\n";
   if (args.plots) {

@@ -3,11 +3,10 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
-#include <nlohmann/json.hpp>
 
 #include "apps/ddafit/commands.hpp"
 #include "apps/ddafit/exit_codes.hpp"
-#include "apps/ddafit/output_files.hpp"
+#include "forward/io/run_files.hpp"
 #include "forward/analysis/stable_friction.hpp"
 #include "forward/io/scene_reader.hpp"
 
@@ -27,7 +26,7 @@ int run_stable(const StableArgs& args) {
     std::cerr << "ddafit stable: need --low < --high and positive --tolerance, --time and --movement\n";
     return kExitBadInput;
   }
-  if (const std::string problem = prepare_output_folder(args.out); !problem.empty()) {
+  if (const std::string problem = io::prepare_output_folder(args.out); !problem.empty()) {
     std::cerr << problem << "\n";
     return kExitBadInput;
   }
@@ -37,18 +36,10 @@ int run_stable(const StableArgs& args) {
                              t.failure.empty() ? "" : "  (run failed: " + t.failure + ")")
               << std::flush;
   });
-  nlohmann::ordered_json j;
-  j["scene"] = args.scene;
-  j["interface"] = args.interface;
-  j["bracketed"] = r.bracketed;
-  j["low"] = r.low;
-  j["high"] = r.high;
-  for (const StableTrial& t : r.trials)
-    j["trials"].push_back({{"friction_angle", t.friction_angle}, {"movement", t.movement}, {"stable", t.stable}});
   const std::string json_path = (std::filesystem::path(args.out) / "stable.json").string();
-  std::ofstream json(json_path);
-  json << j.dump(2) << "\n";
-  if (!json) {
+  try {
+    io::write_stable_json(json_path, args.scene, args.interface, r);
+  } catch (const std::runtime_error&) {
     std::cerr << json_path << ": --out: cannot write the file\n";
     return kExitBadInput;
   }

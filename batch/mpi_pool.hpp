@@ -9,7 +9,7 @@
 #include "inverse/objective.hpp"
 #include "inverse/study.hpp"
 
-namespace ddafit::app {
+namespace ddafit::batch {
 
 // Whether this process was started by mpirun (OpenMPI or PMI(x) variables are set).
 bool mpi_launched();
@@ -31,4 +31,4 @@ void mpi_release_workers(const MpiWorld& world);
 // than `timeout_seconds` is killed.
 void mpi_worker(const inverse::Study& study, int threads, double timeout_seconds);
 
-}  // namespace ddafit::app
+}  // namespace ddafit::batch

@@ -1,4 +1,4 @@
-#include "apps/ddafit/mpi_pool.hpp"
+#include "batch/mpi_pool.hpp"
 
 #include <mpi.h>
 #include <poll.h>
@@ -10,11 +10,11 @@
 #include <cstdlib>
 #include <vector>
 
-#include "apps/ddafit/run_codec.hpp"
-#include "apps/ddafit/thread_budget.hpp"
+#include "forward/io/run_json.hpp"
+#include "batch/thread_budget.hpp"
 #include "inverse/forward_call.hpp"
 
-namespace ddafit::app {
+namespace ddafit::batch {
 namespace {
 
 constexpr int kTagWork = 1, kTagResult = 2, kTagStop = 3;
@@ -42,7 +42,7 @@ std::string run_in_child(const inverse::StudyScene& scene, const std::vector<dou
     close(fds[0]);
     const SimulationResult r = scene.run(values, inverse::run_forward);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    const std::string text = encode_run(r, seconds);
+    const std::string text = io::encode_run(r, seconds);
     for (size_t at = 0; at < text.size();) {
       const ssize_t n = write(fds[1], text.data() + at, text.size() - at);
       if (n <= 0) _exit(3);
@@ -132,7 +132,7 @@ inverse::Objective::BatchRunner mpi_batch_runner(const MpiWorld& world) {
       double seconds = 0.0;
       SimulationResult run;
       try {
-        run = decode_run(text.substr(20), &seconds);
+        run = io::decode_run(text.substr(20), &seconds);
       } catch (const std::exception& e) {  // a garbled reply costs that run, not the job
         run = failed(std::string("worker rank ") + std::to_string(status.MPI_SOURCE) + " sent no readable result (" +
                      e.what() + ")");
@@ -162,7 +162,7 @@ void mpi_worker(const inverse::Study& study, int threads, double timeout) {
     // A crash or a hang is retried once: a node's hiccup should not count as physics.
     std::string why, text = run_in_child(scene, values, timeout, why);
     if (text.empty()) text = run_in_child(scene, values, timeout, why);
-    if (text.empty()) text = encode_run(failed(why + ", twice (worker rank " + std::to_string(status.MPI_SOURCE) + ")"), 0.0);
+    if (text.empty()) text = io::encode_run(failed(why + ", twice (worker rank " + std::to_string(status.MPI_SOURCE) + ")"), 0.0);
     char index[21];
     std::snprintf(index, sizeof index, "%-20lu", static_cast<unsigned long>(message[0]));
     const std::string reply = std::string(index, 20) + text;
@@ -170,4 +170,4 @@ void mpi_worker(const inverse::Study& study, int threads, double timeout) {
   }
 }
 
-}  // namespace ddafit::app
+}  // namespace ddafit::batch

@@ -1,4 +1,4 @@
-#include "apps/ddafit/interrupt.hpp"
+#include "batch/stop_signals.hpp"
 
 #include <unistd.h>
 
@@ -6,7 +6,7 @@
 #include <algorithm>
 #include <cstring>
 
-namespace ddafit::app {
+namespace ddafit::batch {
 namespace {
 
 volatile std::sig_atomic_t g_signal = 0;
@@ -46,4 +46,4 @@ void exit_on_stop_signals(const std::string& message) {
 
 int exit_code_for(int signal) { return 128 + signal; }
 
-}  // namespace ddafit::app
+}  // namespace ddafit::batch

@@ -3,7 +3,7 @@
 // starting a thread per core.
 #pragma once
 
-namespace ddafit::app {
+namespace ddafit::batch {
 
 // threads: OpenMP threads; 0 = the core count. BLAS is held to one thread: on a
 // 1621-block wall CHOLMOD with OpenBLAS's own threads beside OpenMP's spent more time in
@@ -15,4 +15,4 @@ void set_thread_budget(int threads);
 // std::thread starts with the default, not the main thread's budget.
 void set_worker_threads(int threads);
 
-}  // namespace ddafit::app
+}  // namespace ddafit::batch

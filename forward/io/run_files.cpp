@@ -1,4 +1,4 @@
-#include "apps/ddafit/output_files.hpp"
+#include "forward/io/run_files.hpp"
 
 #include <fmt/format.h>
 #include <fmt/os.h>
@@ -8,15 +8,20 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
-#include <nlohmann/json.hpp>
 #include <stdexcept>
 
-namespace ddafit::app {
+#include "forward/io/run_json.hpp"
 
-std::string clock_text(double seconds) {
-  const long s = static_cast<long>(std::max(seconds, 0.0) + 0.5);
-  return s >= 3600 ? fmt::format("{}h{:02d}m", s / 3600, (s % 3600) / 60) : fmt::format("{}m{:02d}s", s / 60, s % 60);
+namespace ddafit::io {
+namespace {
+
+void write_json(const std::string& path, const nlohmann::ordered_json& j) {
+  std::ofstream out(path);
+  out << j.dump(2) << "\n";
+  if (!out) throw std::runtime_error(path + ": cannot write");
 }
+
+}  // namespace
 
 std::string prepare_output_folder(const std::string& out) {
   namespace fs = std::filesystem;
@@ -46,16 +51,6 @@ void write_history_csv(const std::string& path, const Scene& scene, const Simula
   }
 }
 
-static const char* status_name(RunStatus s) {
-  switch (s) {
-    case RunStatus::Completed: return "completed";
-    case RunStatus::InvalidScene: return "invalid_scene";
-    case RunStatus::Failed: return "failed";
-    case RunStatus::Interrupted: return "interrupted";
-  }
-  return "unknown";
-}
-
 void write_summary_json(const std::string& path, const std::string& scene_path, const SimulationResult& result) {
   const SimulationSummary& s = result.summary;
   nlohmann::ordered_json j;
@@ -64,11 +59,7 @@ void write_summary_json(const std::string& path, const std::string& scene_path, 
   if (!s.message.empty()) j["message"] = s.message;
   j["warnings"] = s.warnings;
   j["points"] = nlohmann::ordered_json::object();
-  for (const PointSummary& p : s.points) {
-    nlohmann::ordered_json& point = j["points"][p.name];
-    for (const PointQuantity& q : kPointQuantities)
-      point[q.name] = q.flag ? nlohmann::ordered_json(q.get(p) != 0.0) : nlohmann::ordered_json(q.get(p));
-  }
+  for (const PointSummary& p : s.points) j["points"][p.name] = point_json<nlohmann::ordered_json>(p);
   j["run"] = {{"steps", s.run.steps},
               {"open_close_iterations", s.run.open_close_iterations},
               {"step_cuts", s.run.step_cuts},
@@ -102,9 +93,20 @@ void write_summary_json(const std::string& path, const std::string& scene_path, 
                           {"solve", s.profile.solve},
                           {"check_contacts", s.profile.check_contacts},
                           {"update", s.profile.update}};
-  std::ofstream out(path);
-  if (!out) throw std::runtime_error(path + ": cannot write");
-  out << j.dump(2) << "\n";
+  write_json(path, j);
 }
 
-}  // namespace ddafit::app
+void write_stable_json(const std::string& path, const std::string& scene_path, const std::string& interface,
+                       const StableSearchResult& r) {
+  nlohmann::ordered_json j;
+  j["scene"] = scene_path;
+  j["interface"] = interface;
+  j["bracketed"] = r.bracketed;
+  j["low"] = r.low;
+  j["high"] = r.high;
+  for (const StableTrial& t : r.trials)
+    j["trials"].push_back({{"friction_angle", t.friction_angle}, {"movement", t.movement}, {"stable", t.stable}});
+  write_json(path, j);
+}
+
+}  // namespace ddafit::io

@@ -1,4 +1,4 @@
-#include "apps/ddafit/thread_budget.hpp"
+#include "batch/thread_budget.hpp"
 
 #include <dlfcn.h>
 #include <omp.h>
@@ -6,7 +6,7 @@
 #include <algorithm>
 #include <thread>
 
-namespace ddafit::app {
+namespace ddafit::batch {
 
 void set_thread_budget(int threads) {
   if (threads <= 0) threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
@@ -19,4 +19,4 @@ void set_thread_budget(int threads) {
 
 void set_worker_threads(int threads) { omp_set_num_threads(std::max(1, threads)); }
 
-}  // namespace ddafit::app
+}  // namespace ddafit::batch

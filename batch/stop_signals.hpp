@@ -4,7 +4,7 @@
 
 #include <string>
 
-namespace ddafit::app {
+namespace ddafit::batch {
 
 // simulate: the handlers only note the signal; the run stops at its next step, writes its
 // history and a summary with status `interrupted`, and the command exits 128 + signal.
@@ -19,4 +19,4 @@ void exit_on_stop_signals(const std::string& message);
 // 130 after SIGINT, 143 after SIGTERM (the shell's 128 + signal).
 int exit_code_for(int signal);
 
-}  // namespace ddafit::app
+}  // namespace ddafit::batch

@@ -1,0 +1,30 @@
+// The files a run leaves in its output folder: history.csv, summary.json, and stable.json
+// of a stable-angle search. The command line and the Python module both write them here.
+#pragma once
+
+#include <string>
+
+#include "forward/analysis/stable_friction.hpp"
+#include "forward/run_summary.hpp"
+#include "forward/scene.hpp"
+
+namespace ddafit::io {
+
+// Creates the output folder `out` if needed and checks that a file can be written in it.
+// Empty when it can; otherwise one line, "OUT: --out: PROBLEM" (a read-only folder, a
+// path through a regular file, a name the file system refuses).
+std::string prepare_output_folder(const std::string& out);
+
+// header: time,point,x,y,ux,uy,vx,vy (one row per measure point per output time)
+void write_history_csv(const std::string& path, const Scene& scene, const SimulationResult& result);
+
+// summary.json: status, warnings, each point's quantities, the run's counters, the solver's
+// report and the wall time of each stage. Throws std::runtime_error when it cannot write.
+void write_summary_json(const std::string& path, const std::string& scene_path, const SimulationResult& result);
+
+// stable.json: the bracket of the stable friction angle and every trial. Throws
+// std::runtime_error when it cannot write.
+void write_stable_json(const std::string& path, const std::string& scene_path, const std::string& interface,
+                       const StableSearchResult& result);
+
+}  // namespace ddafit::io
