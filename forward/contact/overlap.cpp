@@ -5,11 +5,11 @@
 
 namespace ddafit {
 
-void note_overlap(const BlockSystem& s, const ContactManifold& m, double depth, double time, WorstOverlap& worst) {
+void WorstOverlap::note(const BlockSystem& s, const ContactManifold& m, double depth_now, double time_now) {
   const auto size = [&](int b) { return s.blocks[b].fixed ? 1e300 : std::sqrt(std::abs(s.blocks[b].area)); };
-  const double ratio = depth / std::min(size(m.block_a), size(m.block_b));
-  if (ratio <= worst.ratio) return;
-  worst = {depth, ratio, time, m.block_a, m.block_b};
+  const double ratio_now = depth_now / std::min(size(m.block_a), size(m.block_b));
+  if (ratio_now <= ratio) return;
+  *this = {depth_now, ratio_now, time_now, m.block_a, m.block_b};
 }
 
 }  // namespace ddafit

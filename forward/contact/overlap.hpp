@@ -14,9 +14,10 @@ struct WorstOverlap {
   double ratio = 0.0;  // depth / the smaller free block's size
   double time = 0.0;   // s
   int block_a = -1, block_b = -1;
-};
 
-// Keeps `depth` (m, > 0 = overlap) of a point of manifold m at `time` if it is the worst so far.
-void note_overlap(const BlockSystem& system, const ContactManifold& m, double depth, double time, WorstOverlap& worst);
+  // Keeps `depth` (m, > 0 = overlap) of a point of manifold m at `time` if it is the
+  // worst so far.
+  void note(const BlockSystem& system, const ContactManifold& m, double depth, double time);
+};
 
 }  // namespace ddafit

@@ -74,8 +74,8 @@ std::vector<Vec2> read_polyline_csv(const YamlChecks& checks, const std::string&
   return line;
 }
 
-void read_regions(const YamlChecks& c, const YAML::Node& mesh, const YAML::Node& regions,
-                  const std::string& base_dir, Scene& s) {
+void read_regions(const YamlChecks& c, const YAML::Node& root, const std::string& base_dir, Scene& s) {
+  const YAML::Node mesh = root["mesh"], regions = root["regions"];
   if (mesh) {
     c.check_keys(mesh, "mesh", {"block_size", "min_area_ratio", "min_angle", "min_edge_ratio", "max_arrangement_edges"});
     if (const YAML::Node n = mesh["block_size"]) s.mesh.block_size = c.length(n, "mesh.block_size");

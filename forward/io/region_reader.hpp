@@ -10,10 +10,9 @@
 
 namespace ddafit::io {
 
-// Reads `mesh` (may be null) and `regions` into the scene; CSV paths are relative to
-// base_dir. Throws SceneReadError naming the key.
-void read_regions(const YamlChecks& checks, const YAML::Node& mesh, const YAML::Node& regions,
-                  const std::string& base_dir, Scene& scene);
+// Reads the scene file's `mesh` and `regions` (either may be absent) into the scene; CSV
+// paths are relative to base_dir. Throws SceneReadError naming the key.
+void read_regions(const YamlChecks& checks, const YAML::Node& root, const std::string& base_dir, Scene& scene);
 
 // A polyline from a CSV file of x,y rows (a header line and lines starting with '#'
 // are skipped). Throws SceneReadError naming `key`.

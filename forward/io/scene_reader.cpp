@@ -44,7 +44,7 @@ class Reader : public YamlChecks {
     if (const YAML::Node n = root["interfaces"]) read_interfaces(n, s);
     if (const YAML::Node b = root["blocks"]; b || !root["regions"])
       read_blocks(required(root, "", "blocks", "define at least one block (or regions)"), s);
-    read_regions(*this, root["mesh"], root["regions"], base_dir_, s);
+    read_regions(*this, root, base_dir_, s);
     if (!s.regions.empty()) {
       std::string problem;
       generate_blocks(s, problem);

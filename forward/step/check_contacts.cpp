@@ -68,15 +68,14 @@ ContactCheck check_contacts(const BlockSystem& s, ContactSet& contacts, const Ei
   double largest_change = 0.0, largest_force = 0.0;
   for (int k = 0; k < static_cast<int>(contacts.manifolds.size()); ++k) {
     ContactManifold& m = contacts.manifolds[k];
-    const Block& ba = s.blocks[m.block_a];
-    const Block& bb = s.blocks[m.block_b];
+    const Vec6 da = block_step(s.blocks[m.block_a], d), db = block_step(s.blocks[m.block_b], d);
     const Interface& face = s.interfaces[m.interface];
     for (int q = 0; q < m.point_count; ++q) {
       ContactPoint& p = m.points[q];
       SpringState& c = p.spring;
       const PointSprings lin = point_springs(s, m, p);
-      c.normal_gap = lin.gap0 + contact_form(lin.normal_a, lin.normal_b, ba, bb, d);
-      c.step_slip = contact_form(lin.shear_a, lin.shear_b, ba, bb, d);
+      c.normal_gap = lin.gap0 + lin.normal_move(da, db);
+      c.step_slip = lin.shear_move(da, db);
       const ContactState before = c.state;
       const double force_before = c.normal_force;
       // N, negative in tension; the spring is unloaded at spring_reference (assemble.hpp).

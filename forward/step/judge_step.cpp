@@ -17,15 +17,21 @@ double max_vertex_displacement(const BlockSystem& s, const Eigen::VectorXd& d) {
   return largest;
 }
 
+struct DeepestPoint {
+  double depth = 0.0;  // m, > 0
+  PointRef which;
+};
+
 // Deepest penetration (> 0) among closed contacts that the step made deeper, and which
 // contact it is. Depth counts from where the spring is unloaded (spring_reference), so
 // a deep contact being pushed out is judged on what the step adds. A contact deeper than
-// hard_limit in all reads as at least as deep as `limit` (the limit the caller compares
-// against): a penalty too soft would otherwise let a block sink a little further every
-// step, each step mending nothing.
-double max_penetration(const ContactSet& contacts, const StepParameters& step, double limit, double hard_limit,
-                       PointRef& which) {
-  double deepest = 0.0;
+// half the search distance in all (close to being lost altogether) reads as at least as
+// deep as the step's penetration limit: a penalty too soft would otherwise let a block
+// sink a little further every step, each step mending nothing.
+DeepestPoint max_penetration(const ImplicitStepContext& ctx, const StepParameters& step) {
+  const ContactSet& contacts = ctx.contacts;
+  const double limit = ctx.control.max_penetration, hard_limit = 0.5 * ctx.detection.settings.margin;
+  DeepestPoint deepest;
   for (int k = 0; k < static_cast<int>(contacts.manifolds.size()); ++k) {
     const ContactManifold& m = contacts.manifolds[k];
     for (int q = 0; q < m.point_count; ++q) {
@@ -35,10 +41,8 @@ double max_penetration(const ContactSet& contacts, const StepParameters& step, d
       // round a corner) cannot be mended by a stiffer spring within the step, only pushed
       // back out over the next steps.
       const double depth = std::max(spring_reference(p, step) - c.normal_gap, -c.normal_gap - (hard_limit - limit));
-      if (c.state != ContactState::Open && c.normal_gap < p.separation && depth > deepest) {
-        deepest = depth;
-        which = {k, q};
-      }
+      if (c.state != ContactState::Open && c.normal_gap < p.separation && depth > deepest.depth)
+        deepest = {depth, {k, q}};
     }
   }
   return deepest;
@@ -72,10 +76,7 @@ StepJudgement judge_step(ImplicitStepContext& ctx, const StepParameters& step, c
     shorter.cut_factor = std::clamp(0.8 * control.max_displacement / moved, 0.1, 0.9);
     return shorter;
   }
-  PointRef deepest;
-  // Half the search distance: deeper, a contact is close to being lost altogether.
-  const double depth =
-      max_penetration(ctx.contacts, step, control.max_penetration, 0.5 * ctx.detection.settings.margin, deepest);
+  const auto [depth, deepest] = max_penetration(ctx, step);
   if (depth <= control.max_penetration) return {};
   const std::string where = describe_contact(ctx.system, ctx.contacts, deepest);
   if (raise_penalty(control, ctx.options)) {

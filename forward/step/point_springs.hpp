@@ -24,7 +24,16 @@ struct PointSprings {
   Vec6 normal_b = Vec6::Zero();  // d(d_n)/dD_b =  T_b(p)^T n
   Vec6 shear_a = Vec6::Zero();   // d(d_s)/dD_a = -T_a(p)^T t
   Vec6 shear_b = Vec6::Zero();   // d(d_s)/dD_b =  T_b(p)^T t
+
+  // d_n - d_n0 and d_s - d_s0 for the blocks' step unknowns D_a, D_b (block_step()).
+  double normal_move(const Vec6& da, const Vec6& db) const { return normal_a.dot(da) + normal_b.dot(db); }
+  double shear_move(const Vec6& da, const Vec6& db) const { return shear_a.dot(da) + shear_b.dot(db); }
 };
+
+// A block's six unknowns in the step's solution d; zero for a fixed block, which has none.
+inline Vec6 block_step(const Block& b, const Eigen::VectorXd& d) {
+  return b.unknown >= 0 ? Vec6(d.segment<6>(6 * b.unknown)) : Vec6::Zero();
+}
 
 inline PointSprings point_springs(const BlockSystem& s, const ContactManifold& m, const ContactPoint& p) {
   const Vec2 ca = s.blocks[m.block_a].centroid, cb = s.blocks[m.block_b].centroid;
@@ -35,14 +44,6 @@ inline PointSprings point_springs(const BlockSystem& s, const ContactManifold& m
   k.shear_a = displacement_matrix_transpose_times(p.anchor, ca, -m.tangent);
   k.shear_b = displacement_matrix_transpose_times(p.anchor, cb, m.tangent);
   return k;
-}
-
-// Value of a linear form over the step's unknowns; a fixed block contributes nothing.
-inline double contact_form(const Vec6& a, const Vec6& b, const Block& ba, const Block& bb, const Eigen::VectorXd& d) {
-  double r = 0.0;
-  if (ba.unknown >= 0) r += a.dot(d.segment<6>(6 * ba.unknown));
-  if (bb.unknown >= 0) r += b.dot(d.segment<6>(6 * bb.unknown));
-  return r;
 }
 
 // Slip of b relative to a that counts as sliding in the current iterate. A point that was

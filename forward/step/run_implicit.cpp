@@ -32,7 +32,7 @@ constexpr double kSlopRatio = 1e-3;
 void measure_overlaps(const BlockSystem& s, const ContactSet& contacts, double time, WorstOverlap& worst) {
   for (const ContactManifold& m : contacts.manifolds)
     for (int q = 0; q < m.point_count; ++q)
-      if (m.points[q].spring.state != ContactState::Open) note_overlap(s, m, -m.points[q].spring.normal_gap, time, worst);
+      if (m.points[q].spring.state != ContactState::Open) worst.note(s, m, -m.points[q].spring.normal_gap, time);
 }
 
 }  // namespace

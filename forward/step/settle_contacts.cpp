@@ -90,7 +90,7 @@ bool settle_contacts(ImplicitStepContext& ctx, const StepParameters& step, doubl
         ContactPoint& p = m.points[q];
         if (p.spring.state == ContactState::Open) continue;
         const PointSprings lin = point_springs(s, m, p);
-        p.spring.shear_offset += contact_form(lin.shear_a, lin.shear_b, s.blocks[m.block_a], s.blocks[m.block_b], moved);
+        p.spring.shear_offset += lin.shear_move(block_step(s.blocks[m.block_a], moved), block_step(s.blocks[m.block_b], moved));
       }
     for (int b = 0; b < static_cast<int>(s.blocks.size()); ++b)
       if (moving(b)) displace_block(s, b, unknowns(b), false);

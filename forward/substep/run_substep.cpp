@@ -91,7 +91,7 @@ void measure_contacts(SubstepContext& w, double time, double converged_speed) {
       const double gap = current_gap(m, p, w.state.step_moves);
       const double vn = m.normal.dot(velocity_at(vb, p.rb) - velocity_at(va, p.ra));
       if (gap < 0.0 && vn < -converged_speed) ++report.unconverged_points;
-      note_overlap(s, m, -gap, time, w.worst);
+      w.worst.note(s, m, -gap, time);
     }
     report.contact_points += m.point_count;
   }
