@@ -19,6 +19,7 @@ packages=(
   clang libfuzzer-14-dev         # scripts/fuzz.sh: libFuzzer targets of the input readers
   openmpi-bin libopenmpi-dev     # scans under mpirun (a manager rank and worker ranks)
   slurm-wlm munge                # scan --slurm, tested against a real one-node cluster
+  graphviz                       # docs/architecture.md: the library graph (scripts/architecture_graph.py)
 )
 if [ "$(id -u)" -ne 0 ]; then sudo=sudo; else sudo=; fi
 $sudo apt-get update -qq
