@@ -105,6 +105,12 @@ struct SimulationOptions {
   // give the same numbers bit for bit). 0 = what the caller set for OpenMP. Not a scene
   // key: set by the command line (--threads).
   int threads = 0;
+
+  // Ensemble realisation (forward/perturb.hpp): 0 runs the scene as given; k >= 1 first
+  // shifts every free block rigidly by a random offset of at most 1e-4 of its size, the
+  // same offsets for the same k on any machine. Not a scene key: set by --ensemble and by
+  // studies' ensembles.
+  int realisation = 0;
 };
 
 // Returns an empty string when the options are usable, else "key: problem".

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "forward/perturb.hpp"
 #include "forward/run_record.hpp"
 #include "forward/step/run_implicit.hpp"
 #include "forward/substep/run_substep.hpp"
@@ -102,15 +103,18 @@ std::vector<std::string> unused_setting_warnings(const SimulationOptions& o, con
 
 }  // namespace
 
-SimulationResult simulate(const Scene& scene, const SimulationHooks& hooks) {
+SimulationResult simulate(const Scene& given, const SimulationHooks& hooks) {
   const auto wall_start = std::chrono::steady_clock::now();
   SimulationResult result;
   SimulationSummary& summary = result.summary;
-  if (const auto errors = validate_scene(scene); !errors.empty()) {
+  if (const auto errors = validate_scene(given); !errors.empty()) {
     summary.status = RunStatus::InvalidScene;
     summary.message = errors.front().key + ": " + errors.front().problem;
     return result;
   }
+  // An ensemble member starts from the checked scene, nudged (forward/perturb.hpp).
+  const Scene nudged = given.options.realisation > 0 ? perturbed_scene(given, given.options.realisation) : Scene();
+  const Scene& scene = given.options.realisation > 0 ? nudged : given;
 #ifdef _OPENMP
   if (scene.options.threads > 0) omp_set_num_threads(scene.options.threads);
 #endif

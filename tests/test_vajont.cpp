@@ -97,26 +97,5 @@ TEST(Vajont, DegradedSceneInheritsAndDegrades) {
   EXPECT_DOUBLE_EQ(s.interfaces[1].friction_angle - s.interfaces[1].roughness_angle, 30.0);
 }
 
-TEST(StableSearch, BracketsTheInclineThreshold) {
-  // A block on a 2:1 slope holds exactly when phi >= alpha = atan(0.5) = 26.565 deg.
-  // "Stable" means moving under 1 cm in 2 s, which a block sliding at phi = alpha - 0.03
-  // deg would exceed; so the bracket must contain alpha to within 0.05 deg.
-  verification::InclineSetup setup;
-  const Scene scene = verification::incline_scene(setup);
-  StableSearchOptions o;
-  o.interface = 0;
-  o.low = 20.0;
-  o.high = 35.0;
-  o.tolerance = 0.25;
-  o.trial_duration = 2.0;
-  o.max_movement = 0.01;
-  const StableSearchResult r = find_stable_friction(scene, o);
-  ASSERT_TRUE(r.bracketed) << r.message;
-  const double alpha = std::atan(0.5) * 180.0 / M_PI;
-  EXPECT_LE(r.high - r.low, o.tolerance);
-  EXPECT_LE(r.low, alpha);
-  EXPECT_GE(r.high, alpha - 0.05);
-}
-
 }  // namespace
 }  // namespace ddafit

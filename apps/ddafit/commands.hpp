@@ -32,8 +32,13 @@ struct SimulateArgs {
   bool quiet = false;
   double vtk_interval = 0.0;  // s between VTK snapshots; 0 = none
   bool plots = false;         // PNG charts of the history
+  int ensemble = 0;           // > 0: run this many realisations (forward/perturb.hpp) and their spread
+  int jobs = 1;               // --ensemble: realisations at a time
+  int threads = 0;            // the command's --threads (0 = the core count)
 };
 int run_simulate(const SimulateArgs& args);
+// simulate --ensemble: the scene is loaded and the output folder ready (ensemble_command.cpp).
+int run_ensemble_command(const SimulateArgs& args, const Scene& scene, const std::string& label);
 
 struct MeshArgs {
   std::string scene;

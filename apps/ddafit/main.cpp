@@ -72,6 +72,13 @@ int main(int argc, char** argv) {
   simulate->add_option("--vtk-interval", sim.vtk_interval, "write DIR/vtk/blocks_NNNNN.vtk every this many s")
       ->check(within(0.0, 1e6));
   simulate->add_flag("--plots", sim.plots, "draw distance/velocity charts (PNG, needs gnuplot)");
+  simulate->add_option("--ensemble", sim.ensemble,
+                       "run K realisations (0: the scene; k >= 1: free blocks nudged by <= 1e-4 of their size) and "
+                       "write their spread to ensemble.json, ensemble.csv and ensemble.png")
+      ->check(CLI::Range(1, 10000));
+  simulate->add_option("--jobs", sim.jobs, "--ensemble: realisations at a time (jobs x threads <= cores)")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 1024));
 
   MeshArgs mesh;
   CLI::App* mesh_cmd = app.add_subcommand("mesh", "cut a scene's regions into blocks; writes scene.yaml, VTK, PNG");
@@ -93,7 +100,10 @@ int main(int argc, char** argv) {
   plot->add_option("--estimate", pl.observed.label, "whose estimate the bands are (legend text)");
 
   StableArgs st;
-  CLI::App* stable = app.add_subcommand("stable", "bisect an interface's friction angle for the stable state");
+  CLI::App* stable = app.add_subcommand(
+      "stable",
+      "bisect an interface's friction angle for the stable state: a trial is stable when, over the last "
+      "--rest-window s, no measure point is as fast as the scene's rest_speed and the speeds are not rising");
   stable->add_option("scene", st.scene, "scene file (YAML)")->required();
   stable->add_option("--interface", st.interface, "interface whose friction angle is searched")->required();
   stable->add_option("--low", st.options.low, "deg, a value that slides")->capture_default_str()->check(within(0.0, 90.0));
@@ -102,9 +112,13 @@ int main(int argc, char** argv) {
       ->capture_default_str()
       ->check(within(1e-6, 90.0));
   stable->add_option("--time", st.options.trial_duration, "s simulated per trial")->capture_default_str()->check(within(1e-6, 1e4));
-  stable->add_option("--movement", st.options.max_movement, "m a point may move and still count as stable")
+  stable->add_option("--rest-window", st.options.rest_window, "s at the end of a trial over which the speeds are judged")
       ->capture_default_str()
-      ->check(within(1e-9, 1e6));
+      ->check(within(1e-6, 1e4));
+  stable->add_option("--movement", st.options.max_movement,
+                     "m: also require that no point moved further (0 = no such condition)")
+      ->capture_default_str()
+      ->check(within(0.0, 1e6));
   stable->add_option("--out", st.out, "output folder for stable.json")->capture_default_str();
   stable->add_option("--set", st.sets, "override a scene value, KEY=VALUE (repeatable)");
 
@@ -214,6 +228,7 @@ int main(int argc, char** argv) {
   }
   ddafit::batch::set_thread_budget(threads);
   sc.threads = threads;
+  sim.threads = threads;
   inv.threads = threads;
   // Under mpirun every rank runs this; `scan` splits into a manager and workers, and the
   // guard ends MPI on every way out.

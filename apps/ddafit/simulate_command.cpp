@@ -69,6 +69,7 @@ int run_simulate(const SimulateArgs& args) {
     std::cerr << problem << "\n";
     return kExitBadInput;
   }
+  if (args.ensemble > 0) return run_ensemble_command(args, scene, label);
   std::error_code ec;
 
   SimulationHooks hooks;

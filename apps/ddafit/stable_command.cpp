@@ -30,15 +30,22 @@ int run_stable(const StableArgs& args) {
     std::cerr << problem << "\n";
     return kExitBadInput;
   }
-  std::cout << fmt::format("{:>10} {:>14} {:>8}\n", "phi (deg)", "movement (m)", "stable");
+  std::cout << fmt::format("a trial is stable when, over its last {} s, every measure point is slower than {} m/s "
+                           "(rest_speed) and the speeds are not rising{}\n",
+                           o.rest_window, scene.rest_speed,
+                           o.max_movement > 0.0 ? fmt::format(", and no point moved more than {} m", o.max_movement)
+                                                : std::string());
+  std::cout << fmt::format("{:>10} {:>14} {:>18} {:>8} {:>8}\n", "phi (deg)", "movement (m)", "window speed (m/s)",
+                           "rising", "stable");
   const StableSearchResult r = find_stable_friction(scene, o, [](const StableTrial& t) {
-    std::cout << fmt::format("{:>10.3f} {:>14.4f} {:>8}{}\n", t.friction_angle, t.movement, t.stable ? "yes" : "no",
+    std::cout << fmt::format("{:>10.3f} {:>14.4f} {:>18.4f} {:>8} {:>8}{}\n", t.friction_angle, t.movement,
+                             t.window_speed, t.rising ? "yes" : "no", t.stable ? "yes" : "no",
                              t.failure.empty() ? "" : "  (run failed: " + t.failure + ")")
               << std::flush;
   });
   const std::string json_path = (std::filesystem::path(args.out) / "stable.json").string();
   try {
-    io::write_stable_json(json_path, args.scene, args.interface, r);
+    io::write_stable_json(json_path, {args.scene, args.interface, scene.rest_speed, o}, r);
   } catch (const std::runtime_error&) {
     std::cerr << json_path << ": --out: cannot write the file\n";
     return kExitBadInput;

@@ -1,5 +1,12 @@
 // The friction angle at which a scene stays put (the seed's "stable state", §3.4b):
 // bisection on one interface's peak friction angle, each trial a forward run.
+//
+// A trial is stable when its motion has died out: over the last `rest_window` seconds of
+// the trial the largest speed of any measure point stays below the scene's rest_speed, and
+// it is not rising (the peak over the window's second half is not above the peak over its
+// first half by more than 10 % plus 1 % of rest_speed). Elastic settling of a thick mass is
+// then not sliding, and slow creep, below rest_speed but accelerating, is not rest. A
+// largest displacement (`max_movement`) is an optional extra condition.
 #pragma once
 
 #include <functional>
@@ -15,15 +22,22 @@ struct StableSearchOptions {
   double low = 5.0;            // deg, expected to slide
   double high = 45.0;          // deg, expected to stay put
   double tolerance = 0.5;      // deg: stop when high - low is below this
-  double trial_duration = 5.0; // s simulated per trial
-  double max_movement = 0.1;   // m: a trial is stable when no measure point moves further
+  // s simulated per trial: long enough for a Vajont section at a holding angle to come to
+  // rest (docs/vajont.md, "The stable state": section VII's speeds fall below 0.1 m/s within
+  // about 4 s of the start at 20-22 deg).
+  double trial_duration = 10.0;
+  double rest_window = 1.0;    // s at the end of a trial over which the speeds are judged
+  double max_movement = 0.0;   // m; > 0 adds "no measure point moved further" to the criterion
 };
 
 struct StableTrial {
   double friction_angle = 0.0;
-  double movement = 0.0;  // largest max_total_displacement over the measure points, m
+  double movement = 0.0;     // largest max_total_displacement over the measure points, m
+  double window_speed = 0.0; // largest speed of any measure point over the rest window, m/s
+  double end_speed = 0.0;    // largest speed of any measure point at the trial's end, m/s
+  bool rising = false;       // the speeds grew over the rest window
   bool stable = false;
-  std::string failure;    // the run's diagnosis if it failed (counted as not stable)
+  std::string failure;       // the run's diagnosis if it failed (counted as not stable)
 };
 
 struct StableSearchResult {

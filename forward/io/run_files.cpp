@@ -11,6 +11,7 @@
 #include <stdexcept>
 
 #include "forward/io/run_json.hpp"
+#include "forward/perturb.hpp"
 
 namespace ddafit::io {
 namespace {
@@ -96,17 +97,66 @@ void write_summary_json(const std::string& path, const std::string& scene_path, 
   write_json(path, j);
 }
 
-void write_stable_json(const std::string& path, const std::string& scene_path, const std::string& interface,
-                       const StableSearchResult& r) {
+void write_stable_json(const std::string& path, const StableSearchInput& in, const StableSearchResult& r) {
   nlohmann::ordered_json j;
-  j["scene"] = scene_path;
-  j["interface"] = interface;
+  j["scene"] = in.scene_path;
+  j["interface"] = in.interface;
+  const StableSearchOptions& o = in.options;
+  j["criterion"] = {{"rule", "over the last rest_window s of a trial, every measure point is slower than rest_speed "
+                             "and the speeds are not rising (peak over the window's second half <= 1.1 x the first "
+                             "half's + 0.01 rest_speed)"},
+                    {"rest_speed", in.rest_speed},
+                    {"rest_window", o.rest_window},
+                    {"trial_duration", o.trial_duration},
+                    {"max_movement", o.max_movement}};
+  j["tolerance"] = o.tolerance;
   j["bracketed"] = r.bracketed;
   j["low"] = r.low;
   j["high"] = r.high;
-  for (const StableTrial& t : r.trials)
-    j["trials"].push_back({{"friction_angle", t.friction_angle}, {"movement", t.movement}, {"stable", t.stable}});
+  if (!r.message.empty()) j["message"] = r.message;
+  for (const StableTrial& t : r.trials) {
+    nlohmann::ordered_json trial = {{"friction_angle", t.friction_angle}, {"movement", t.movement},
+                                    {"window_speed", t.window_speed},     {"end_speed", t.end_speed},
+                                    {"rising", t.rising},                 {"stable", t.stable}};
+    if (!t.failure.empty()) trial["failure"] = t.failure;
+    j["trials"].push_back(trial);
+  }
   write_json(path, j);
+}
+
+void write_ensemble_json(const std::string& path, const std::string& scene_path, const EnsembleSummary& e) {
+  nlohmann::ordered_json j;
+  j["scene"] = scene_path;
+  j["members"] = e.members;
+  j["completed"] = e.completed;
+  j["jitter"] = fmt::format("realisation 0 is the scene as given; realisation k >= 1 shifts every free block rigidly "
+                            "by an offset uniform in a disc of radius {} x sqrt(block area), drawn from SplitMix64 "
+                            "seeded with k (forward/perturb.hpp)", kJitterRatio);
+  j["failures"] = e.failures;
+  j["points"] = nlohmann::ordered_json::object();
+  for (const EnsemblePoint& p : e.points) {
+    nlohmann::ordered_json& point = j["points"][p.name];
+    for (size_t q = 0; q < p.quantities.size(); ++q) {
+      const Spread& s = p.quantities[q];
+      point[kPointQuantities[q].name] = {{"mean", s.mean}, {"standard_deviation", s.standard_deviation},
+                                         {"low", s.low},   {"high", s.high}};
+    }
+  }
+  write_json(path, j);
+}
+
+void write_ensemble_csv(const std::string& path, const std::vector<SimulationResult>& members) {
+  std::ofstream out(path);
+  out << "realisation,status,point";
+  for (const PointQuantity& q : kPointQuantities) out << "," << q.name;
+  out << "\n";
+  for (size_t k = 0; k < members.size(); ++k)
+    for (const PointSummary& p : members[k].summary.points) {
+      out << k << "," << status_name(members[k].summary.status) << "," << p.name;
+      for (const PointQuantity& q : kPointQuantities) out << fmt::format(",{:.12g}", q.get(p));
+      out << "\n";
+    }
+  if (!out) throw std::runtime_error(path + ": cannot write");
 }
 
 }  // namespace ddafit::io

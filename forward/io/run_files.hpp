@@ -4,6 +4,9 @@
 
 #include <string>
 
+#include <vector>
+
+#include "forward/analysis/ensemble.hpp"
 #include "forward/analysis/stable_friction.hpp"
 #include "forward/run_summary.hpp"
 #include "forward/scene.hpp"
@@ -22,9 +25,23 @@ void write_history_csv(const std::string& path, const Scene& scene, const Simula
 // report and the wall time of each stage. Throws std::runtime_error when it cannot write.
 void write_summary_json(const std::string& path, const std::string& scene_path, const SimulationResult& result);
 
-// stable.json: the bracket of the stable friction angle and every trial. Throws
-// std::runtime_error when it cannot write.
-void write_stable_json(const std::string& path, const std::string& scene_path, const std::string& interface,
-                       const StableSearchResult& result);
+// What a stable search was asked: for stable.json.
+struct StableSearchInput {
+  std::string scene_path;
+  std::string interface;
+  double rest_speed = 0.0;  // the scene's, m/s
+  StableSearchOptions options;
+};
+
+// stable.json: the criterion and its numbers, the bracket of the stable friction angle and
+// every trial. Throws std::runtime_error when it cannot write.
+void write_stable_json(const std::string& path, const StableSearchInput& input, const StableSearchResult& result);
+
+// ensemble.json: per measure point and quantity, the mean, standard deviation and range
+// over the completed members, with the jitter rule. ensemble.csv: one row per member and
+// point (realisation, status, point, the quantities). Throw std::runtime_error when they
+// cannot be written.
+void write_ensemble_json(const std::string& path, const std::string& scene_path, const EnsembleSummary& ensemble);
+void write_ensemble_csv(const std::string& path, const std::vector<SimulationResult>& members);
 
 }  // namespace ddafit::io
