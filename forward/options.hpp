@@ -111,6 +111,9 @@ struct SimulationOptions {
   // same offsets for the same k on any machine. Not a scene key: set by --ensemble and by
   // studies' ensembles.
   int realisation = 0;
+  // The largest nudge of realisation k >= 1, as a fraction of a block's size; 0 = the
+  // default, kJitterRatio (forward/perturb.hpp). Not a scene key.
+  double jitter_ratio = 0.0;
 };
 
 // Returns an empty string when the options are usable, else "key: problem".

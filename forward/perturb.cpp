@@ -31,7 +31,8 @@ Scene perturbed_scene(const Scene& scene, int realisation) {
   for (size_t b = 0; b < scene.blocks.size(); ++b) {
     if (scene.blocks[b].fixed) continue;
     const double size = std::sqrt(std::abs(signed_area(scene.blocks[b].polygon)));
-    const double radius = kJitterRatio * size * std::sqrt(random.uniform());
+    const double ratio = scene.options.jitter_ratio > 0.0 ? scene.options.jitter_ratio : kJitterRatio;
+    const double radius = ratio * size * std::sqrt(random.uniform());
     const double angle = 2.0 * M_PI * random.uniform();
     offset[b] = Vec2(radius * std::cos(angle), radius * std::sin(angle));
     for (Vec2& p : out.blocks[b].polygon) p += offset[b];

@@ -69,10 +69,12 @@ Scene StudyScene::at(const std::vector<double>& values) const {
   return scene;
 }
 
-SimulationResult StudyScene::run(const std::vector<double>& values, const ForwardModel& forward) const {
+SimulationResult StudyScene::run(const std::vector<double>& values, const ForwardModel& forward,
+                                 int realisation) const {
   Scene scene;
   try {
     scene = at(values);
+    scene.options.realisation = realisation;
   } catch (const io::SceneReadError& e) {
     return refused(RunStatus::InvalidScene, e.what());
   } catch (const std::exception& e) {

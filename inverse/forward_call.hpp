@@ -34,8 +34,9 @@ class StudyScene {
 
   // The scene at one point (a value per study parameter). Throws io::SceneReadError.
   Scene at(const std::vector<double>& values) const;
-  // forward(at(values)); a value the scene refuses is a run with status InvalidScene.
-  SimulationResult run(const std::vector<double>& values, const ForwardModel& forward) const;
+  // forward(at(values)), as ensemble realisation `realisation` (forward/perturb.hpp; 0 =
+  // the scene as given); a value the scene refuses is a run with status InvalidScene.
+  SimulationResult run(const std::vector<double>& values, const ForwardModel& forward, int realisation = 0) const;
   // Peak friction angle (deg) of the interface a key "interfaces.NAME.*" belongs to, at
   // the given point; NaN when the key names no interface or the point is refused.
   double peak_friction_angle(const std::vector<double>& values, const std::string& key) const;

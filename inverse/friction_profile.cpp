@@ -96,6 +96,7 @@ BoundingFriction profile_friction(Objective& objective, const Study& study, cons
       pt.chi2 = objective.evaluate(x).chi2;
     }
     pt.failed = pt.chi2 >= kFailedMisfit;
+    pt.chi2_observations = chi2_observations_only(study, objective.evaluate(pt.values));  // from the log: no run
     pt.mu = residual_friction(study, parameter, f.peak_angle, value);
     const auto at = std::lower_bound(f.profile.begin(), f.profile.end(), value,
                                      [](const ProfilePoint& a, double v) { return a.value < v; });
@@ -150,7 +151,14 @@ BoundingFriction profile_friction(Objective& objective, const Study& study, cons
     if (std::isnan(split)) break;
     add_point(split);
   }
-  for (ProfileRange* r : {&f.delta1, &f.delta4}) {
+  f.with_model_sigma = study.has_model_sigma();
+  if (f.with_model_sigma) {
+    std::vector<ProfilePoint> observations_only = f.profile;
+    for (ProfilePoint& q : observations_only) q.chi2 = q.chi2_observations;
+    f.delta1_observations = profile_range(observations_only, 1.0);
+    f.delta4_observations = profile_range(observations_only, 4.0);
+  }
+  for (ProfileRange* r : {&f.delta1, &f.delta4, &f.delta1_observations, &f.delta4_observations}) {
     // mu falls as degradation (or roughness) rises: the low mu belongs to the high value.
     r->mu_low = residual_friction(study, parameter, f.peak_angle, r->high);
     r->mu_high = residual_friction(study, parameter, f.peak_angle, r->low);

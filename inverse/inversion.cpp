@@ -1,4 +1,5 @@
 #include "inverse/inversion.hpp"
+#include "inverse/model_spread.hpp"
 
 #include <chrono>
 #include <cmath>
@@ -60,13 +61,21 @@ void apply_options(Objective& objective, const InversionOptions& options) {
   objective.on_log = options.on_log;
 }
 
-InversionSummary run_inversion(const Study& study, const InversionOptions& options, const ForwardModel& forward) {
+InversionSummary run_inversion(const Study& given, const InversionOptions& options, const ForwardModel& forward) {
   const auto t0 = std::chrono::steady_clock::now();
   InversionSummary out;
   out.model_version = options.model_version;
-  out.scene_hash = scene_input_hash(study);
-  std::unique_ptr<EvaluationCache> cache_file = open_cache(study, options, &out.cache_path);
+  out.scene_hash = scene_input_hash(given);
+  std::unique_ptr<EvaluationCache> cache_file = open_cache(given, options, &out.cache_path);
   EvaluationCache& cache = *cache_file;
+  // A `model_sigma: ensemble` is measured once, at the start, before any fit.
+  const ModelSpread spread = measure_model_spread(given, options, cache, forward);
+  for (const std::string& line : spread.notes) {
+    out.notes.push_back(line);
+    if (options.on_log) options.on_log(line);
+  }
+  const Study& study = spread.study;
+  out.observations = study.observations;
 
   Objective objective(study, cache, forward);
   apply_options(objective, options);

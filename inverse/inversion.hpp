@@ -52,6 +52,7 @@ struct ProfileRange {
 struct ProfilePoint {
   double value = 0.0;  // the profiled parameter
   double chi2 = 0.0;
+  double chi2_observations = 0.0;  // the same run scored with the observations' sigma alone
   double mu = 0.0;
   bool failed = false;
   std::vector<double> values;  // the whole point (others at best, or re-fitted)
@@ -70,6 +71,11 @@ struct BoundingFriction {
   bool reoptimized = false;  // others re-fitted at each scan point (else fixed at best)
   std::vector<ProfilePoint> profile;  // sorted by value
   ProfileRange delta1, delta4;
+  // When observations carry a model_sigma: the same ranges with the observations' sigma
+  // alone, read off the same runs (the bisection refines delta1/delta4's crossings; these
+  // are interpolated between the profile's points, exactly so where chi2 is quadratic).
+  bool with_model_sigma = false;
+  ProfileRange delta1_observations, delta4_observations;
 };
 
 struct CovarianceReport {
@@ -83,6 +89,7 @@ struct CovarianceReport {
 };
 
 struct InversionSummary {
+  std::vector<Observation> observations;  // as fitted: model_sigma measured where asked
   std::vector<LevelFit> levels;
   int best_level = -1;
   BoundingFriction friction;

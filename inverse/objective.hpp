@@ -108,6 +108,10 @@ class Objective {
   double seconds_run_ = 0.0, seconds_cached_ = 0.0;
 };
 
+// chi^2 of an evaluation's simulated values with each observation's own sigma, leaving its
+// model_sigma out (the "observations only" reading of a study with model spread).
+double chi2_observations_only(const Study& study, const Evaluation& e);
+
 // A summary field by its name (summary_quantities()); NaN for an unknown name.
 double summary_value(const PointSummary& point, const std::string& quantity);
 

@@ -31,7 +31,8 @@ json observations_json(const Study& study, const Evaluation& e) {
   for (size_t k = 0; k < study.observations.size(); ++k) {
     const Observation& o = study.observations[k];
     out.push_back({{"point", o.point}, {"quantity", o.quantity}, {"kind", kind_name(o.kind)}, {"observed", o.value},
-                   {"sigma", o.sigma}, {"simulated", k < e.simulated.size() ? e.simulated[k] : NAN},
+                   {"sigma", o.sigma}, {"model_sigma", o.model_sigma}, {"effective_sigma", o.effective_sigma()},
+                   {"simulated", k < e.simulated.size() ? e.simulated[k] : NAN},
                    {"residual", k < e.residuals.size() ? e.residuals[k] : NAN}});
   }
   return out;
@@ -101,6 +102,10 @@ json report_json(const Study& study, const InversionSummary& s) {
                                {"failed", p.failed}});
     bf["delta_chi2_1"] = range_json(f.delta1);
     bf["delta_chi2_4"] = range_json(f.delta4);
+    if (f.with_model_sigma) {
+      bf["observations_only"] = {{"delta_chi2_1", range_json(f.delta1_observations)},
+                                 {"delta_chi2_4", range_json(f.delta4_observations)}};
+    }
   }
   j["bounding_friction"] = bf;
   const CovarianceReport& c = s.covariance;
@@ -209,12 +214,23 @@ std::string bounding_friction_sentence(const Study& study, const BoundingFrictio
                        "the bound to find one. {}{}.",
                        f.delta4.mu_low, degrees(f.delta4.mu_low), study.parameters[f.parameter].name, f.interface,
                        static_cast<char>(std::toupper(best[0])), best.substr(1));
-  return fmt::format("Basal friction cannot have dropped below mu_b = {:.3f} (phi_b = {:.1f} deg) at Delta chi2 <= 4 "
+  // With a model spread: the bound with it, then the observations' sigma alone.
+  const std::string alone =
+      !f.with_model_sigma ? std::string()
+      : f.delta4_observations.high_at_bound
+          ? " (observations only: no lower bound within the search bounds)"
+          : fmt::format(" (observations only: >= {:.3f}, phi_b = {:.1f} deg)", f.delta4_observations.mu_low,
+                        degrees(f.delta4_observations.mu_low));
+  return fmt::format("Basal friction cannot have dropped below mu_b = {:.3f} (phi_b = {:.1f} deg) at Delta chi2 <= 4{}{} "
                      "(interface `{}`); {}.",
-                     f.delta4.mu_low, degrees(f.delta4.mu_low), f.interface, best);
+                     f.delta4.mu_low, degrees(f.delta4.mu_low), f.with_model_sigma ? " with the model's spread" : "",
+                     alone, f.interface, best);
 }
 
-std::vector<std::string> write_report(const std::string& dir, const Study& study, const InversionSummary& summary) {
+std::vector<std::string> write_report(const std::string& dir, const Study& given, const InversionSummary& summary) {
+  // The observations as fitted (a measured model_sigma filled in).
+  Study study = given;
+  if (!summary.observations.empty()) study.observations = summary.observations;
   std::error_code ec;
   std::filesystem::create_directories(dir, ec);
   if (ec) throw std::runtime_error(dir + ": cannot create the folder (" + ec.message() + ")");

@@ -1,3 +1,4 @@
+#include "inverse/model_spread.hpp"
 #include "inverse/scan_design.hpp"
 
 #include <cmath>
@@ -111,10 +112,15 @@ DesignPlan plan_points(const Study& study, const InversionOptions& options, cons
   return plan;
 }
 
-DesignResult run_design(const Study& study, const InversionOptions& options, const DesignOptions& design,
+DesignResult run_design(const Study& given, const InversionOptions& options, const DesignOptions& design,
                         const ForwardModel& forward) {
   DesignResult r;
-  const std::unique_ptr<EvaluationCache> cache = open_cache(study, options, &r.cache_path);
+  const std::unique_ptr<EvaluationCache> cache = open_cache(given, options, &r.cache_path);
+  // A `model_sigma: ensemble` is measured once, before the design; chi2 then uses sigma_eff.
+  const ModelSpread model = measure_model_spread(given, options, *cache, forward);
+  for (const std::string& line : model.notes)
+    if (options.on_log) options.on_log(line);
+  const Study& study = model.study;
   Objective objective(study, *cache, forward);
   apply_options(objective, options);
   const std::vector<std::vector<double>> points = design_values(study, design);
@@ -124,6 +130,18 @@ DesignResult run_design(const Study& study, const InversionOptions& options, con
     if (!r.runs[k].failed && (r.best < 0 || r.runs[k].chi2 < r.runs[r.best].chi2)) r.best = static_cast<long>(k);
   r.within1 = spread(study, objective.scene(), r, 1.0);
   r.within4 = spread(study, objective.scene(), r, 4.0);
+  if (study.has_model_sigma()) {
+    // The same runs scored with the observations' sigma alone.
+    DesignResult alone = r;
+    alone.best = -1;
+    for (size_t k = 0; k < alone.runs.size(); ++k) {
+      alone.runs[k].chi2 = chi2_observations_only(study, alone.runs[k]);
+      if (!alone.runs[k].failed && (alone.best < 0 || alone.runs[k].chi2 < alone.runs[alone.best].chi2))
+        alone.best = static_cast<long>(k);
+    }
+    r.within4_observations = spread(study, objective.scene(), alone, 4.0);
+    r.with_model_sigma = true;
+  }
   if (design.kind == DesignKind::Morris) {
     MorrisDesign m;
     const size_t per_combo = unit_design(continuous_count(study), design, &m).size();

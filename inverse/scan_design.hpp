@@ -41,6 +41,8 @@ struct DesignResult {
   std::vector<Evaluation> runs;  // in design order
   long best = -1;                // index of the lowest chi2 among completed runs
   FrictionSpread within1, within4;
+  bool with_model_sigma = false;        // observations carry a model_sigma:
+  FrictionSpread within4_observations;  // then this is within4 with their sigma alone
   std::vector<MorrisEffects> effects;  // morris: one per level combination
   long cached = 0, run = 0;
   std::string cache_path;

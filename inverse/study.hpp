@@ -3,6 +3,7 @@
 // the boundary, so the optimisers never see an impossible setting.
 #pragma once
 
+#include <cmath>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -41,6 +42,13 @@ struct Observation {
   double value = 0.0;
   double sigma = 0.0;    // > 0, same units as value
   ObservationKind kind = ObservationKind::Equal;
+  // The model's own spread in the simulated value (a chaotic run's scatter, issue "Trust
+  // the answer"), added to sigma in quadrature: sigma_eff = sqrt(sigma^2 + model_sigma^2).
+  // Given in the study, or measured (model_sigma: ensemble) as the standard deviation over
+  // the study's ensemble at the start point, once, before the fit.
+  double model_sigma = 0.0;
+  bool model_sigma_from_ensemble = false;
+  double effective_sigma() const { return std::sqrt(sigma * sigma + model_sigma * model_sigma); }
 };
 
 enum class Optimizer { Nlopt, Ceres };
@@ -76,6 +84,12 @@ struct Study {
   std::vector<Observation> observations;
   MethodOptions method;
   ProfileOptions profile;
+  int ensemble = 8;  // realisations that measure a `model_sigma: ensemble` (forward/perturb.hpp)
+  bool has_model_sigma() const {
+    for (const Observation& o : observations)
+      if (o.model_sigma > 0.0 || o.model_sigma_from_ensemble) return true;
+    return false;
+  }
 };
 
 // The PointSummary fields an observation may name.

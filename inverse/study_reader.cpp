@@ -36,7 +36,7 @@ class StudyReader : public io::YamlChecks {
 
   Study read(const YAML::Node& root, const std::string& dir) const {
     if (!root.IsMap()) fail("(top level)", "expected a map with scene, parameters, observations");
-    check_keys(root, "", {"scene", "settings", "parameters", "observations", "method", "profile"});
+    check_keys(root, "", {"scene", "settings", "parameters", "observations", "method", "profile", "ensemble"});
     Study s;
     s.path = file();
     const std::string scene = text(required(root, "", "scene", "name the scene file (relative to the study)"), "scene");
@@ -60,6 +60,12 @@ class StudyReader : public io::YamlChecks {
         std::count_if(s.parameters.begin(), s.parameters.end(), [](const Parameter& q) { return q.discrete(); }) != 1)
       fail("method.levels", "coarse_to_fine needs exactly one parameter with levels (coarse first, e.g. block sizes)");
     if (const YAML::Node n = root["profile"]) s.profile = profile(n, s.parameters);
+    if (const YAML::Node n = root["ensemble"]) {
+      const double k = number(n, "ensemble");
+      if (!(k >= 2 && k <= 1000 && k == std::floor(k)))
+        fail("ensemble", "is " + fmt(k) + "; give a whole number of realisations in [2, 1000]");
+      s.ensemble = static_cast<int>(k);
+    }
     return s;
   }
 
@@ -133,7 +139,7 @@ class StudyReader : public io::YamlChecks {
   }
 
   Observation observation(const YAML::Node& n, const std::string& path) const {
-    check_keys(n, path, {"point", "quantity", "value", "sigma", "kind"});
+    check_keys(n, path, {"point", "quantity", "value", "sigma", "kind", "model_sigma"});
     Observation o;
     o.point = text(required(n, path, "point", "name the scene's measure point"), join(path, "point"));
     o.quantity = text(required(n, path, "quantity", "name a summary field"), join(path, "quantity"));
@@ -146,6 +152,15 @@ class StudyReader : public io::YamlChecks {
     o.value = bounded(n, path, "value", "give the observed value");
     o.sigma = bounded(n, path, "sigma", "give the observation's standard deviation");
     if (!(o.sigma >= kSmallest)) fail(join(path, "sigma"), "is " + fmt(o.sigma) + "; must be >= 1e-12");
+    if (const YAML::Node m = n["model_sigma"]) {
+      if (m.IsScalar() && m.Scalar() == "ensemble") {
+        o.model_sigma_from_ensemble = true;
+      } else {
+        o.model_sigma = bounded(m, join(path, "model_sigma"));
+        if (!(o.model_sigma >= 0.0))
+          fail(join(path, "model_sigma"), "is " + fmt(o.model_sigma) + "; give a value >= 0 or 'ensemble'");
+      }
+    }
     if (const YAML::Node k = n["kind"]) {
       const std::string kind = text(k, join(path, "kind"));
       if (kind == "equal") o.kind = ObservationKind::Equal;

@@ -14,6 +14,7 @@
 #include "inverse/forward_call.hpp"
 #include "inverse/inversion.hpp"
 #include "inverse/objective.hpp"
+#include "inverse/report.hpp"
 #include "inverse/study.hpp"
 
 namespace {
@@ -336,3 +337,84 @@ TEST(InverseCache, StoresSummariesBitExactlyAndKeysOnExactValues) {
 }
 
 }  // namespace
+
+namespace {
+
+// One parameter and one observation of the twin: A's largest displacement against the
+// basal degradation, at the truth (30 %). Near the truth the response is close to linear
+// (chi2 quadratic), so adding a model_sigma s_m to sigma widens the Delta chi2 range by
+// sqrt(sigma^2 + s_m^2) / sigma.
+fs::path one_observation_study(const std::string& tag, const std::string& model_sigma) {
+  const SimulationResult truth =
+      run_forward(io::read_scene(kScene, {{"interfaces.clay.degradation_percent", exact_text(kTrueDegradation)},
+                                          {"interfaces.joint.roughness_angle", exact_text(kTrueRoughness)}}));
+  const fs::path path = fresh_dir(tag) / "study.yaml";
+  std::ofstream(path) << "scene: " << kScene << "\n"
+                      << "settings: {interfaces.joint.roughness_angle: " << kTrueRoughness << "}\n"
+                      << "parameters:\n"
+                      << "  - {name: basal_degradation, key: interfaces.clay.degradation_percent, lower: 20, upper: 40,"
+                      << " start: 28, resolution: 0.01}\n"
+                      << "observations:\n"
+                      << "  - {point: A, quantity: max_total_displacement, value: "
+                      << exact_text(truth.summary.points[0].max_total_displacement) << ", sigma: 0.01"
+                      << (model_sigma.empty() ? "" : ", model_sigma: " + model_sigma) << "}\n"
+                      << "method: {optimizer: nlopt, algorithm: LN_BOBYQA, budget: 30}\n"
+                      << "profile: {points: 21}\n";
+  return path;
+}
+
+}  // namespace
+
+TEST(InverseModelSigma, AGivenModelSigmaWidensTheRangeBySigmaEffOverSigma) {
+  const Study study = read_study(one_observation_study("model_sigma", "0.02").string());
+  ASSERT_DOUBLE_EQ(study.observations[0].effective_sigma(), std::sqrt(0.01 * 0.01 + 0.02 * 0.02));
+  InversionOptions options;
+  options.out_dir = fresh_dir("model_sigma/out").string();
+  options.model_version = "test";
+  const InversionSummary s = run_inversion(study, options);
+  const BoundingFriction& f = s.friction;
+  ASSERT_TRUE(f.available && f.with_model_sigma) << f.why_not;
+  const double with_model = f.delta1.high - f.delta1.low;
+  const double alone = f.delta1_observations.high - f.delta1_observations.low;
+  ASSERT_GT(alone, 0.0);
+  EXPECT_NEAR(with_model / alone, std::sqrt(5.0), 0.05 * std::sqrt(5.0))
+      << "with " << with_model << ", observations only " << alone;
+  // The sentence gives both bounds.
+  EXPECT_NE(bounding_friction_sentence(study, f).find("observations only"), std::string::npos);
+}
+
+TEST(InverseModelSigma, AnEnsembleModelSigmaIsMeasuredOnceAtTheStartAndCached) {
+  // model_sigma: ensemble runs the study's K realisations at the start point before the
+  // fit; a resumed study finds all of them in the cache and runs none again.
+  std::string text;
+  {
+    std::ifstream in(one_observation_study("model_sigma_ensemble", "ensemble"));
+    text.assign(std::istreambuf_iterator<char>(in), {});
+  }
+  const fs::path path = fs::path(DDAFIT_TEST_TMP) / "model_sigma_ensemble" / "study.yaml";
+  std::ofstream(path) << text << "ensemble: 4\n";
+  const Study study = read_study(path.string());
+  ASSERT_TRUE(study.observations[0].model_sigma_from_ensemble);
+  InversionOptions options;
+  options.out_dir = fresh_dir("model_sigma_ensemble/out").string();
+  options.model_version = "test";
+  int forward_runs = 0;
+  const ForwardModel counting = [&](const Scene& scene) {
+    ++forward_runs;
+    return run_forward(scene);
+  };
+  const InversionSummary first = run_inversion(study, options, counting);
+  ASSERT_EQ(first.observations.size(), 1u);
+  // Two sliders on planes: nothing amplifies a 1e-6 nudge, so the measured spread is tiny
+  // but measured (>= 0), and sigma_eff stays within a hair of sigma.
+  EXPECT_GE(first.observations[0].model_sigma, 0.0);
+  EXPECT_LT(first.observations[0].model_sigma, 1e-3);
+  bool noted = false;
+  for (const std::string& n : first.notes) noted = noted || n.find("model_sigma =") != std::string::npos;
+  EXPECT_TRUE(noted);
+  options.resume = true;
+  forward_runs = 0;
+  const InversionSummary again = run_inversion(study, options, counting);
+  EXPECT_EQ(again.observations[0].model_sigma, first.observations[0].model_sigma);
+  EXPECT_EQ(forward_runs, 0) << "every realisation and every fit point came from the cache";
+}

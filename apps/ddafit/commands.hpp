@@ -34,6 +34,7 @@ struct SimulateArgs {
   bool plots = false;         // PNG charts of the history
   int ensemble = 0;           // > 0: run this many realisations (forward/perturb.hpp) and their spread
   int jobs = 1;               // --ensemble: realisations at a time
+  double jitter = 0.0;        // --ensemble: largest nudge / block size; 0 = kJitterRatio
   int threads = 0;            // the command's --threads (0 = the core count)
 };
 int run_simulate(const SimulateArgs& args);

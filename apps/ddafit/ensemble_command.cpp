@@ -16,6 +16,7 @@
 #include "forward/io/gnuplot.hpp"
 #include "forward/io/run_files.hpp"
 #include "forward/io/run_json.hpp"
+#include "forward/perturb.hpp"
 
 namespace ddafit::app {
 namespace {
@@ -75,14 +76,17 @@ int run_ensemble_command(const SimulateArgs& args, const Scene& scene, const std
     }
     std::cerr << line << fmt::format(" ({:.1f} s)\n", r.summary.profile.total);
   };
-  const std::vector<SimulationResult> members = batch::run_ensemble(scene, runs);
+  Scene nudged = scene;
+  nudged.options.jitter_ratio = args.jitter;
+  const std::vector<SimulationResult> members = batch::run_ensemble(nudged, runs);
   if (members.front().summary.status == RunStatus::InvalidScene) {
     std::cerr << label << ": " << members.front().summary.message << "\n";
     return kExitBadInput;
   }
   std::vector<SimulationSummary> summaries;
   for (const SimulationResult& m : members) summaries.push_back(m.summary);
-  const EnsembleSummary e = summarise_ensemble(summaries);
+  EnsembleSummary e = summarise_ensemble(summaries);
+  e.jitter_ratio = args.jitter > 0.0 ? args.jitter : kJitterRatio;
   try {
     io::write_history_csv((dir / "history.csv").string(), scene, members.front());
     io::write_summary_json((dir / "summary.json").string(), label, members.front());

@@ -73,9 +73,12 @@ int main(int argc, char** argv) {
       ->check(within(0.0, 1e6));
   simulate->add_flag("--plots", sim.plots, "draw distance/velocity charts (PNG, needs gnuplot)");
   simulate->add_option("--ensemble", sim.ensemble,
-                       "run K realisations (0: the scene; k >= 1: free blocks nudged by <= 1e-4 of their size) and "
+                       "run K realisations (0: the scene; k >= 1: free blocks nudged by <= --jitter of their size) and "
                        "write their spread to ensemble.json, ensemble.csv and ensemble.png")
       ->check(CLI::Range(1, 10000));
+  simulate->add_option("--jitter", sim.jitter,
+                       "--ensemble: the largest nudge of a block, as a fraction of its size (default 1e-6)")
+      ->check(CLI::Range(1e-12, 1e-2));
   simulate->add_option("--jobs", sim.jobs, "--ensemble: realisations at a time (jobs x threads <= cores)")
       ->capture_default_str()
       ->check(CLI::Range(1, 1024));

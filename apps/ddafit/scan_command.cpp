@@ -86,7 +86,10 @@ void write_report_md(const fs::path& path, const ScanArgs& a, const inverse::Stu
     md << "Every run failed: see runs.csv and the messages printed during the scan.\n\n";
   }
   md << "## Residual basal friction over the runs that fit\n\n";
-  md << "- " << spread_sentence(r.within1, 1.0) << "\n- " << spread_sentence(r.within4, 4.0) << "\n\n";
+  md << "- " << spread_sentence(r.within1, 1.0) << "\n- " << spread_sentence(r.within4, 4.0) << "\n";
+  if (r.with_model_sigma)
+    md << "- observations only (model_sigma left out): " << spread_sentence(r.within4_observations, 4.0) << "\n";
+  md << "\n";
   md << "Charts: `chi2_along_*.png` (chi2 along each parameter), `chi2_map_*_*.png` (over each pair)"
      << (r.effects.empty() ? "" : ", `morris.png`") << ".\n\n";
   md << "A scan samples; the bounds of the friction range are as fine as its points. Where the range "
@@ -255,6 +258,9 @@ int run_scan(const ScanArgs& args) {
   std::cout << fmt::format("{} runs ({} made, {} cached); wrote {}/runs.csv and report.md\n", result.runs.size(),
                            result.run, result.cached, args.out);
   std::cout << spread_sentence(result.within1, 1.0) << "\n" << spread_sentence(result.within4, 4.0) << "\n";
+  if (result.with_model_sigma)
+    std::cout << "observations only (model_sigma left out): " << spread_sentence(result.within4_observations, 4.0)
+              << "\n";
   return kExitSuccess;
 }
 

@@ -22,7 +22,7 @@ int run_stable(const StableArgs& args) {
     std::cerr << args.scene << ": --interface: no interface '" << args.interface << "' in the scene\n";
     return kExitBadInput;
   }
-  if (!(o.low < o.high) || !(o.tolerance > 0.0) || !(o.trial_duration > 0.0) || !(o.max_movement > 0.0)) {
+  if (!(o.low < o.high) || !(o.tolerance > 0.0) || !(o.trial_duration > 0.0) || !(o.max_movement >= 0.0)) {
     std::cerr << "ddafit stable: need --low < --high and positive --tolerance, --time and --movement\n";
     return kExitBadInput;
   }

@@ -22,6 +22,7 @@ struct EnsemblePoint {
 
 struct EnsembleSummary {
   int members = 0;    // realisations run
+  double jitter_ratio = 0.0;  // the nudge of the members (SimulationOptions::jitter_ratio)
   int completed = 0;  // of which completed; only these enter the statistics
   std::vector<EnsemblePoint> points;
   std::vector<std::string> failures;  // "realisation K: message" of each member that did not complete

@@ -131,7 +131,7 @@ void write_ensemble_json(const std::string& path, const std::string& scene_path,
   j["completed"] = e.completed;
   j["jitter"] = fmt::format("realisation 0 is the scene as given; realisation k >= 1 shifts every free block rigidly "
                             "by an offset uniform in a disc of radius {} x sqrt(block area), drawn from SplitMix64 "
-                            "seeded with k (forward/perturb.hpp)", kJitterRatio);
+                            "seeded with k (forward/perturb.hpp)", e.jitter_ratio);
   j["failures"] = e.failures;
   j["points"] = nlohmann::ordered_json::object();
   for (const EnsemblePoint& p : e.points) {

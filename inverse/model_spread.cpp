@@ -1,0 +1,93 @@
+#include "inverse/model_spread.hpp"
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <fmt/format.h>
+#include <mutex>
+#include <thread>
+
+#include "inverse/objective.hpp"
+
+namespace ddafit::inverse {
+namespace {
+
+std::string realisation_key(const Study& study, const std::vector<double>& x, int k) {
+  return point_key(study, x) + (k > 0 ? ";realisation=" + std::to_string(k) : "");
+}
+
+}  // namespace
+
+ModelSpread measure_model_spread(const Study& study, const InversionOptions& options, EvaluationCache& cache,
+                                 const ForwardModel& forward) {
+  ModelSpread out;
+  out.study = study;
+  const bool wanted = std::any_of(study.observations.begin(), study.observations.end(),
+                                  [](const Observation& o) { return o.model_sigma_from_ensemble; });
+  if (!wanted) return out;
+  for (const Parameter& p : study.parameters) out.at.push_back(p.discrete() ? p.levels.front() : p.start);
+  const int members = study.ensemble;
+  std::vector<SimulationSummary> summaries(static_cast<size_t>(members));
+  std::vector<int> todo;
+  for (int k = 0; k < members; ++k) {
+    if (const auto hit = cache.find(realisation_key(study, out.at, k))) {
+      summaries[k] = hit->result.summary;
+      ++out.cached;
+    } else {
+      todo.push_back(k);
+    }
+  }
+  // The runs share nothing; the cache is written by this thread only, as each ends.
+  const StudyScene scene(study);
+  std::mutex mutex;
+  std::atomic<size_t> next{0};
+  const auto work = [&] {
+    if (options.on_worker_start && options.jobs > 1) options.on_worker_start();
+    for (size_t i = next++; i < todo.size(); i = next++) {
+      const auto t0 = std::chrono::steady_clock::now();
+      SimulationResult run = scene.run(out.at, forward, todo[i]);
+      const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      std::lock_guard<std::mutex> lock(mutex);
+      cache.store(realisation_key(study, out.at, todo[i]), run, seconds, false);
+      summaries[todo[i]] = std::move(run.summary);
+      ++out.run;
+      if (options.on_log)
+        options.on_log(fmt::format("model spread: realisation {} of {} {} in {:.1f} s", todo[i], members,
+                                   summaries[todo[i]].status == RunStatus::Completed ? "completed" : "failed",
+                                   seconds));
+    }
+  };
+  std::vector<std::thread> workers;
+  for (int w = 1; w < std::min<int>(std::max(options.jobs, 1), static_cast<int>(todo.size())); ++w)
+    workers.emplace_back(work);
+  work();
+  for (std::thread& t : workers) t.join();
+
+  out.members = members;
+  for (size_t k = 0; k < summaries.size(); ++k) {
+    if (summaries[k].status == RunStatus::Completed) ++out.completed;
+    else out.notes.push_back("model spread: realisation " + std::to_string(k) + " failed: " + summaries[k].message);
+  }
+  for (size_t k = 0; k < out.study.observations.size(); ++k) {
+    Observation& o = out.study.observations[k];
+    if (!o.model_sigma_from_ensemble) continue;
+    std::vector<double> values;
+    for (const SimulationSummary& s : summaries) {
+      if (s.status != RunStatus::Completed) continue;
+      for (const PointSummary& p : s.points)
+        if (p.name == o.point) values.push_back(summary_value(p, o.quantity));
+    }
+    double mean = 0.0, squares = 0.0;
+    for (double v : values) mean += v / static_cast<double>(values.size());
+    for (double v : values) squares += (v - mean) * (v - mean);
+    o.model_sigma = values.size() > 1 ? std::sqrt(squares / static_cast<double>(values.size() - 1)) : 0.0;
+    out.notes.push_back(fmt::format("observations[{}] ({} {}): model_sigma = {:.4g} from {} of {} realisations "
+                                    "(mean {:.4g}); sigma_eff = {:.4g} against sigma {:.4g}",
+                                    k, o.point, o.quantity, o.model_sigma, values.size(), members, mean,
+                                    o.effective_sigma(), o.sigma));
+  }
+  return out;
+}
+
+}  // namespace ddafit::inverse

@@ -1,0 +1,31 @@
+// The model's own spread, measured: a study whose observations say `model_sigma: ensemble`
+// runs the study's ensemble (`ensemble: K` realisations, forward/perturb.hpp) at its
+// starting point once, before the fit, and each such observation's model_sigma becomes the
+// standard deviation of its simulated quantity over the completed members.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "inverse/evaluation_cache.hpp"
+#include "inverse/forward_call.hpp"
+#include "inverse/inversion.hpp"
+
+namespace ddafit::inverse {
+
+struct ModelSpread {
+  Study study;                      // the given study with every measured model_sigma filled in
+  std::vector<double> at;           // the point the ensemble ran at (the study's start)
+  int members = 0, completed = 0;   // 0 when nothing was measured
+  long run = 0, cached = 0;         // forward runs made now, and found in the cache
+  std::vector<std::string> notes;   // one line per measured observation, and failures
+};
+
+// Realisations run `options.jobs` at a time; each is cached under the start point's key
+// with ";realisation=K" appended (realisation 0 is the start point's own run), so a
+// resumed study measures nothing twice. A study with no `model_sigma: ensemble` comes back
+// unchanged, with nothing run.
+ModelSpread measure_model_spread(const Study& study, const InversionOptions& options, EvaluationCache& cache,
+                                 const ForwardModel& forward);
+
+}  // namespace ddafit::inverse
