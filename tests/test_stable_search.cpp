@@ -13,6 +13,21 @@ namespace {
 
 const double kAlpha = std::atan(0.5) * 180.0 / M_PI;  // the 2:1 incline's angle, deg
 
+// The 2:1 incline on one solver, and a search of its interface from `low` to 35 deg with
+// 2 s trials.
+struct InclineSearch {
+  Scene scene;
+  StableSearchOptions options;
+  InclineSearch(Integrator solver, double low) : scene(verification::incline_scene({})) {
+    scene.options.integrator = solver;
+    options.interface = 0;
+    options.low = low;
+    options.high = 35.0;
+    options.trial_duration = 2.0;
+  }
+  StableSearchResult run() const { return find_stable_friction(scene, options); }
+};
+
 class StableSearchSolver : public ::testing::TestWithParam<Integrator> {};
 
 TEST_P(StableSearchSolver, BracketsTheInclineAngleOnEachSolver) {
@@ -21,36 +36,22 @@ TEST_P(StableSearchSolver, BracketsTheInclineAngleOnEachSolver) {
   // is 0.018 m/s^2, 0.04 m/s after 2 s, under rest_speed, but rising; so the bracket must
   // hold alpha to within the search tolerance, plus the 0.02 deg below which a 2 s trial
   // cannot tell a rise of 0.35 a from the 1 % of rest_speed the rule allows.
-  verification::InclineSetup setup;
-  Scene scene = verification::incline_scene(setup);
-  scene.options.integrator = GetParam();
-  StableSearchOptions o;
-  o.interface = 0;
-  o.low = 20.0;
-  o.high = 35.0;
-  o.tolerance = 0.25;
-  o.trial_duration = 2.0;
-  const StableSearchResult r = find_stable_friction(scene, o);
+  InclineSearch search(GetParam(), 20.0);
+  search.options.tolerance = 0.25;
+  const StableSearchResult r = search.run();
   ASSERT_TRUE(r.bracketed) << r.message;
-  EXPECT_LE(r.high - r.low, o.tolerance);
+  EXPECT_LE(r.high - r.low, search.options.tolerance);
   EXPECT_LE(r.low, kAlpha + 0.02);
   EXPECT_GE(r.high, kAlpha - 0.02);
 }
 
 TEST_P(StableSearchSolver, SlowAcceleratingCreepBelowRestSpeedIsNotRest) {
   // 0.1 deg below alpha the block is still under rest_speed after 2 s, but speeding up.
-  verification::InclineSetup setup;
-  Scene scene = verification::incline_scene(setup);
-  scene.options.integrator = GetParam();
-  StableSearchOptions o;
-  o.interface = 0;
-  o.low = kAlpha - 0.1;
-  o.high = 35.0;
-  o.trial_duration = 2.0;
-  const StableSearchResult r = find_stable_friction(scene, o);
+  const InclineSearch search(GetParam(), kAlpha - 0.1);
+  const StableSearchResult r = search.run();
   ASSERT_FALSE(r.trials.empty());
   const StableTrial& creep = r.trials.front();
-  EXPECT_LT(creep.window_speed, scene.rest_speed) << "the creep is slower than rest_speed";
+  EXPECT_LT(creep.window_speed, search.scene.rest_speed) << "the creep is slower than rest_speed";
   EXPECT_TRUE(creep.rising);
   EXPECT_FALSE(creep.stable);
 }
@@ -58,18 +59,10 @@ TEST_P(StableSearchSolver, SlowAcceleratingCreepBelowRestSpeedIsNotRest) {
 TEST_P(StableSearchSolver, ABlockCreepingAtASteadySpeedAboveRestSpeedIsNotStable) {
   // At phi = alpha a block started at 0.3 m/s down the slope keeps that speed: not rising,
   // not at rest. At 35 deg the same block stops within a tenth of a second: stable.
-  verification::InclineSetup setup;
-  Scene scene = verification::incline_scene(setup);
-  scene.options.integrator = GetParam();
-  const Vec2 down = Vec2(2.0, -1.0).normalized();
-  scene.blocks[1].velocity = 0.3 * down;
-  StableSearchOptions o;
-  o.interface = 0;
-  o.low = kAlpha;
-  o.high = 35.0;
-  o.tolerance = 5.0;
-  o.trial_duration = 2.0;
-  const StableSearchResult r = find_stable_friction(scene, o);
+  InclineSearch search(GetParam(), kAlpha);
+  search.scene.blocks[1].velocity = 0.3 * Vec2(2.0, -1.0).normalized();
+  search.options.tolerance = 5.0;
+  const StableSearchResult r = search.run();
   ASSERT_TRUE(r.bracketed) << r.message;
   const StableTrial& creep = r.trials.front();
   EXPECT_NEAR(creep.end_speed, 0.3, 0.01) << "Coulomb friction at phi = alpha exactly balances gravity";
