@@ -1,6 +1,8 @@
 #include "forward/analysis/stable_friction.hpp"
 
 #include <algorithm>
+#include <utility>
+#include <vector>
 
 #include "forward/simulation.hpp"
 
@@ -13,24 +15,28 @@ double trial_output_interval(const Scene& scene, const StableSearchOptions& o) {
   return scene.output_interval > 0.0 && scene.output_interval <= wanted ? scene.output_interval : wanted;
 }
 
-// The rest criterion (stable_friction.hpp) on the run's history.
+// The rest criterion (stable_friction.hpp) on the run's history: per output time the
+// largest speed of any measure point; its peak over the window, and its mean over each
+// half (means, not peaks: a contact that chatters once in the second half is no creep).
 void judge_rest(const SimulationResult& r, const StableSearchOptions& o, double rest_speed, StableTrial& t) {
   const double end = r.summary.run.simulated_time;
   const double start = end - std::min(o.rest_window, end), middle = 0.5 * (start + end);
-  double first_half = 0.0, second_half = 0.0, last_time = -1.0;
+  std::vector<std::pair<double, double>> fastest;  // (time, largest speed at that time)
   for (const HistoryRow& h : r.history) {
     if (h.time < start) continue;
-    const double v = h.velocity.norm();
-    double& half = h.time < middle ? first_half : second_half;
-    half = std::max(half, v);
-    if (h.time > last_time) {
-      last_time = h.time;
-      t.end_speed = 0.0;
-    }
-    t.end_speed = std::max(t.end_speed, v);
+    if (fastest.empty() || h.time > fastest.back().first) fastest.emplace_back(h.time, 0.0);
+    fastest.back().second = std::max(fastest.back().second, h.velocity.norm());
   }
-  t.window_speed = std::max(first_half, second_half);
-  t.rising = second_half > 1.1 * first_half + 0.01 * rest_speed;
+  double sum[2] = {0.0, 0.0};
+  int count[2] = {0, 0};
+  for (const auto& [time, speed] : fastest) {
+    t.window_speed = std::max(t.window_speed, speed);
+    sum[time >= middle] += speed;
+    ++count[time >= middle];
+  }
+  t.end_speed = fastest.empty() ? 0.0 : fastest.back().second;
+  const double first = count[0] ? sum[0] / count[0] : 0.0, second = count[1] ? sum[1] / count[1] : 0.0;
+  t.rising = second > 1.1 * first + 0.01 * rest_speed;
   t.stable = t.window_speed < rest_speed && !t.rising;
 }
 

@@ -3,7 +3,7 @@
 //
 // A trial is stable when its motion has died out: over the last `rest_window` seconds of
 // the trial the largest speed of any measure point stays below the scene's rest_speed, and
-// it is not rising (the peak over the window's second half is not above the peak over its
+// it is not rising (its mean over the window's second half is not above its mean over the
 // first half by more than 10 % plus 1 % of rest_speed). Elastic settling of a thick mass is
 // then not sliding, and slow creep, below rest_speed but accelerating, is not rest. A
 // largest displacement (`max_movement`) is an optional extra condition.
