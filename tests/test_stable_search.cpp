@@ -34,15 +34,15 @@ TEST_P(StableSearchSolver, BracketsTheInclineAngleOnEachSolver) {
   // A block at rest on a 2:1 slope holds exactly when phi >= alpha = 26.565 deg. Just
   // below, it accelerates at g cos(alpha) (tan alpha - tan phi): 0.1 deg below alpha that
   // is 0.018 m/s^2, 0.04 m/s after 2 s, under rest_speed, but rising; so the bracket must
-  // hold alpha to within the search tolerance, plus the 0.02 deg below which a 2 s trial
-  // cannot tell a rise of 0.35 a from the 1 % of rest_speed the rule allows.
+  // hold alpha to within the search tolerance, plus the 0.08 deg below which a 2 s trial
+  // cannot tell the halves' rise of 0.375 a from 10 % + kRiseAllowance x rest_speed.
   InclineSearch search(GetParam(), 20.0);
   search.options.tolerance = 0.25;
   const StableSearchResult r = search.run();
   ASSERT_TRUE(r.bracketed) << r.message;
   EXPECT_LE(r.high - r.low, search.options.tolerance);
-  EXPECT_LE(r.low, kAlpha + 0.02);
-  EXPECT_GE(r.high, kAlpha - 0.02);
+  EXPECT_LE(r.low, kAlpha + 0.08);
+  EXPECT_GE(r.high, kAlpha - 0.08);
 }
 
 TEST_P(StableSearchSolver, SlowAcceleratingCreepBelowRestSpeedIsNotRest) {

@@ -36,7 +36,7 @@ void judge_rest(const SimulationResult& r, const StableSearchOptions& o, double 
   }
   t.end_speed = fastest.empty() ? 0.0 : fastest.back().second;
   const double first = count[0] ? sum[0] / count[0] : 0.0, second = count[1] ? sum[1] / count[1] : 0.0;
-  t.rising = second > 1.1 * first + 0.01 * rest_speed;
+  t.rising = second > 1.1 * first + kRiseAllowance * rest_speed;
   t.stable = t.window_speed < rest_speed && !t.rising;
 }
 

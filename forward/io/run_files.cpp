@@ -104,7 +104,7 @@ void write_stable_json(const std::string& path, const StableSearchInput& in, con
   const StableSearchOptions& o = in.options;
   j["criterion"] = {{"rule", "over the last rest_window s of a trial, every measure point is slower than rest_speed "
                              "and the speeds are not rising (their mean over the window's second half <= 1.1 x the "
-                             "first half's + 0.01 rest_speed)"},
+                             "first half's + 0.05 rest_speed)"},
                     {"rest_speed", in.rest_speed},
                     {"rest_window", o.rest_window},
                     {"trial_duration", o.trial_duration},
