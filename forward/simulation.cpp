@@ -112,21 +112,17 @@ SimulationResult simulate(const Scene& given, const SimulationHooks& hooks) {
     summary.message = errors.front().key + ": " + errors.front().problem;
     return result;
   }
+  // An ensemble member starts from the checked scene, nudged (forward/perturb.hpp).
+  const Scene nudged = given.options.realisation > 0 ? perturbed_scene(given, given.options.realisation) : Scene();
+  const Scene& scene = given.options.realisation > 0 ? nudged : given;
 #ifdef _OPENMP
-  if (given.options.threads > 0) omp_set_num_threads(given.options.threads);
+  if (scene.options.threads > 0) omp_set_num_threads(scene.options.threads);
 #endif
 
-  BlockSystem system = build_block_system(given);
-  summary.solver = choose_solver(given, system);
-  for (std::string& w : unused_setting_warnings(given.options, summary.solver))
+  BlockSystem system = build_block_system(scene);
+  summary.solver = choose_solver(scene, system);
+  for (std::string& w : unused_setting_warnings(scene.options, summary.solver))
     summary.warnings.push_back(std::move(w));
-  // An ensemble member starts from the checked scene, nudged (forward/perturb.hpp).
-  Scene nudged;
-  if (given.options.realisation > 0) {
-    nudged = perturbed_scene(given, given.options.realisation);
-    system = build_block_system(nudged);
-  }
-  const Scene& scene = given.options.realisation > 0 ? nudged : given;
   RunRecorder recorder(scene, hooks, result);
   if (summary.solver.integrator == Integrator::Substep) {
     run_substep(scene, system, recorder, summary);

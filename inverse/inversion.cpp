@@ -69,7 +69,7 @@ InversionSummary run_inversion(const Study& given, const InversionOptions& optio
   std::unique_ptr<EvaluationCache> cache_file = open_cache(given, options, &out.cache_path);
   EvaluationCache& cache = *cache_file;
   // A `model_sigma: ensemble` is measured once, at the start, before any fit.
-  const ModelSpread spread = measure_model_spread(given, options, cache, forward);
+  const ModelSpread spread = measure_model_spread(given, spread_runs(options), cache, forward);
   for (const std::string& line : spread.notes) {
     out.notes.push_back(line);
     if (options.on_log) options.on_log(line);

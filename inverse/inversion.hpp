@@ -12,6 +12,7 @@
 
 #include "inverse/fit.hpp"
 #include "inverse/forward_call.hpp"
+#include "inverse/model_spread.hpp"
 #include "inverse/objective.hpp"
 #include "inverse/study.hpp"
 
@@ -28,6 +29,9 @@ struct InversionOptions {
   std::function<void()> on_worker_start;  // first thing on each worker thread (its thread budget)
   Objective::BatchRunner batch_runner;    // where batches run instead (MPI workers under mpirun)
 };
+
+// The part of the options that runs a study's model-spread ensemble (model_spread.hpp).
+inline ModelSpreadRuns spread_runs(const InversionOptions& o) { return {o.jobs, o.on_worker_start, o.on_log}; }
 
 // Set-up problems (the cache cannot be opened, or exists without --resume): one line.
 struct InversionError : std::runtime_error {

@@ -8,7 +8,7 @@
 #include <mutex>
 #include <thread>
 
-#include "inverse/objective.hpp"
+#include "forward/analysis/ensemble.hpp"
 
 namespace ddafit::inverse {
 namespace {
@@ -19,7 +19,7 @@ std::string realisation_key(const Study& study, const std::vector<double>& x, in
 
 }  // namespace
 
-ModelSpread measure_model_spread(const Study& study, const InversionOptions& options, EvaluationCache& cache,
+ModelSpread measure_model_spread(const Study& study, const ModelSpreadRuns& options, EvaluationCache& cache,
                                  const ForwardModel& forward) {
   ModelSpread out;
   out.study = study;
@@ -64,28 +64,20 @@ ModelSpread measure_model_spread(const Study& study, const InversionOptions& opt
   work();
   for (std::thread& t : workers) t.join();
 
-  out.members = members;
-  for (size_t k = 0; k < summaries.size(); ++k) {
-    if (summaries[k].status == RunStatus::Completed) ++out.completed;
-    else out.notes.push_back("model spread: realisation " + std::to_string(k) + " failed: " + summaries[k].message);
-  }
+  // The statistics of forward/analysis/ensemble, over the members that completed.
+  const EnsembleSummary spread = summarise_ensemble(summaries);
+  out.members = spread.members;
+  out.completed = spread.completed;
+  for (const std::string& failure : spread.failures) out.notes.push_back("model spread: " + failure);
   for (size_t k = 0; k < out.study.observations.size(); ++k) {
     Observation& o = out.study.observations[k];
     if (!o.model_sigma_from_ensemble) continue;
-    std::vector<double> values;
-    for (const SimulationSummary& s : summaries) {
-      if (s.status != RunStatus::Completed) continue;
-      for (const PointSummary& p : s.points)
-        if (p.name == o.point) values.push_back(summary_value(p, o.quantity));
-    }
-    double mean = 0.0, squares = 0.0;
-    for (double v : values) mean += v / static_cast<double>(values.size());
-    for (double v : values) squares += (v - mean) * (v - mean);
-    o.model_sigma = values.size() > 1 ? std::sqrt(squares / static_cast<double>(values.size() - 1)) : 0.0;
+    const Spread* s = find_spread(spread, o.point, o.quantity);
+    o.model_sigma = s ? s->standard_deviation : 0.0;
     out.notes.push_back(fmt::format("observations[{}] ({} {}): model_sigma = {:.4g} from {} of {} realisations "
                                     "(mean {:.4g}); sigma_eff = {:.4g} against sigma {:.4g}",
-                                    k, o.point, o.quantity, o.model_sigma, values.size(), members, mean,
-                                    o.effective_sigma(), o.sigma));
+                                    k, o.point, o.quantity, o.model_sigma, spread.completed, members,
+                                    s ? s->mean : NAN, o.effective_sigma(), o.sigma));
   }
   return out;
 }

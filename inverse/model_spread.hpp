@@ -4,12 +4,12 @@
 // standard deviation of its simulated quantity over the completed members.
 #pragma once
 
+#include <functional>
 #include <string>
 #include <vector>
 
 #include "inverse/evaluation_cache.hpp"
 #include "inverse/forward_call.hpp"
-#include "inverse/inversion.hpp"
 
 namespace ddafit::inverse {
 
@@ -21,11 +21,18 @@ struct ModelSpread {
   std::vector<std::string> notes;   // one line per measured observation, and failures
 };
 
-// Realisations run `options.jobs` at a time; each is cached under the start point's key
+// How the realisations run (InversionOptions gives these: spread_runs()).
+struct ModelSpreadRuns {
+  int jobs = 1;                                     // runs at a time
+  std::function<void()> on_worker_start;            // first thing on each extra thread
+  std::function<void(const std::string&)> on_log;   // one line per run ended
+};
+
+// Realisations run `runs.jobs` at a time; each is cached under the start point's key
 // with ";realisation=K" appended (realisation 0 is the start point's own run), so a
 // resumed study measures nothing twice. A study with no `model_sigma: ensemble` comes back
 // unchanged, with nothing run.
-ModelSpread measure_model_spread(const Study& study, const InversionOptions& options, EvaluationCache& cache,
+ModelSpread measure_model_spread(const Study& study, const ModelSpreadRuns& runs, EvaluationCache& cache,
                                  const ForwardModel& forward);
 
 }  // namespace ddafit::inverse

@@ -13,15 +13,19 @@ double summary_value(const PointSummary& p, const std::string& quantity) {
   return std::numeric_limits<double>::quiet_NaN();
 }
 
+double observation_residual(const Observation& o, double simulated, double sigma) {
+  const double r = (simulated - o.value) / sigma;
+  const bool counts = o.kind == ObservationKind::Equal || (o.kind == ObservationKind::AtMost && r > 0.0) ||
+                      (o.kind == ObservationKind::AtLeast && r < 0.0);
+  return counts ? r : 0.0;
+}
+
 double chi2_observations_only(const Study& study, const Evaluation& e) {
   if (e.failed) return e.chi2;
   double chi2 = 0.0;
   for (size_t k = 0; k < study.observations.size() && k < e.simulated.size(); ++k) {
-    const Observation& o = study.observations[k];
-    const double r = (e.simulated[k] - o.value) / o.sigma;
-    const bool counts = o.kind == ObservationKind::Equal || (o.kind == ObservationKind::AtMost && r > 0.0) ||
-                        (o.kind == ObservationKind::AtLeast && r < 0.0);
-    if (counts) chi2 += r * r;
+    const double r = observation_residual(study.observations[k], e.simulated[k], study.observations[k].sigma);
+    chi2 += r * r;
   }
   return chi2;
 }
@@ -47,10 +51,7 @@ Evaluation Objective::score(const std::vector<double>& values, const SimulationS
       e.message = "the run's summary has no finite " + o.quantity + " for point " + o.point;
       break;
     }
-    const double r = (e.simulated[k] - o.value) / o.effective_sigma();
-    const bool counts = o.kind == ObservationKind::Equal || (o.kind == ObservationKind::AtMost && r > 0.0) ||
-                        (o.kind == ObservationKind::AtLeast && r < 0.0);
-    e.residuals[k] = counts ? r : 0.0;
+    e.residuals[k] = observation_residual(o, e.simulated[k], o.effective_sigma());
     e.chi2 += e.residuals[k] * e.residuals[k];
   }
   if (e.failed) {

@@ -108,6 +108,10 @@ class Objective {
   double seconds_run_ = 0.0, seconds_cached_ = 0.0;
 };
 
+// (simulated - value) / sigma where the observation counts (always for Equal; for AtMost
+// and AtLeast only when the limit is violated), else 0.
+double observation_residual(const Observation& o, double simulated, double sigma);
+
 // chi^2 of an evaluation's simulated values with each observation's own sigma, leaving its
 // model_sigma out (the "observations only" reading of a study with model spread).
 double chi2_observations_only(const Study& study, const Evaluation& e);

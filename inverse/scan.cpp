@@ -21,10 +21,9 @@ std::vector<std::vector<double>> profile_points(const Study& study, int paramete
   return out;
 }
 
-ScanResult run_scan(const Study& given, const InversionOptions& options, const std::string& parameter, int points,
+ScanResult run_scan(const Study& study, const InversionOptions& options, const std::string& parameter, int points,
                     const ForwardModel& forward) {
   ScanResult out;
-  const Study& study = given;
   for (size_t k = 0; k < study.parameters.size(); ++k)
     if (study.parameters[k].name == parameter) out.parameter = static_cast<int>(k);
   if (out.parameter < 0 || study.parameters[out.parameter].discrete())
@@ -32,7 +31,7 @@ ScanResult run_scan(const Study& given, const InversionOptions& options, const s
   if (points < 2) throw InversionError(study.path + ": --points: give at least 2");
   const std::unique_ptr<EvaluationCache> cache = open_cache(study, options, &out.cache_path);
   // A `model_sigma: ensemble` is measured once, before the scan; chi2 then uses sigma_eff.
-  const ModelSpread spread = measure_model_spread(given, options, *cache, forward);
+  const ModelSpread spread = measure_model_spread(study, spread_runs(options), *cache, forward);
   for (const std::string& line : spread.notes)
     if (options.on_log) options.on_log(line);
   Objective objective(spread.study, *cache, forward);

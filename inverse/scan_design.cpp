@@ -117,7 +117,7 @@ DesignResult run_design(const Study& given, const InversionOptions& options, con
   DesignResult r;
   const std::unique_ptr<EvaluationCache> cache = open_cache(given, options, &r.cache_path);
   // A `model_sigma: ensemble` is measured once, before the design; chi2 then uses sigma_eff.
-  const ModelSpread model = measure_model_spread(given, options, *cache, forward);
+  const ModelSpread model = measure_model_spread(given, spread_runs(options), *cache, forward);
   for (const std::string& line : model.notes)
     if (options.on_log) options.on_log(line);
   const Study& study = model.study;

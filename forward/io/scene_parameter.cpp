@@ -10,6 +10,7 @@
 #include <variant>
 
 #include "forward/io/scene_reader.hpp"
+#include "forward/io/yaml_checks.hpp"
 #include "forward/mesh/region.hpp"
 
 namespace ddafit::io {
@@ -104,13 +105,6 @@ int index_of(const std::vector<T>& items, const std::string& name) {
   return -1;
 }
 
-template <class T>
-std::string names_of(const std::vector<T>& items) {
-  std::string out;
-  for (const T& item : items) out += (out.empty() ? "" : ", ") + item.name;
-  return out.empty() ? "none" : out;
-}
-
 bool is_whole(double v) {
   return std::isfinite(v) && v == std::floor(v) && std::abs(v) <= std::numeric_limits<int>::max();
 }
@@ -152,9 +146,9 @@ SceneParameter::SceneParameter(const Scene& scene, const std::string& key, const
     if (section != row.section || field != row.field || (row.entry != Entry::None) == name.empty()) continue;
     row_ = r;
     if (row.entry == Entry::Material && (entry_ = index_of(scene.materials, name)) < 0)
-      fail("the scene has no material '" + name + "' (it has: " + names_of(scene.materials) + ")");
+      fail("the scene has no material '" + name + "' (it has: " + list_names(scene.materials) + ")");
     if (row.entry == Entry::Interface && (entry_ = index_of(scene.interfaces, name)) < 0)
-      fail("the scene has no interface '" + name + "' (it has: " + names_of(scene.interfaces) + ")");
+      fail("the scene has no interface '" + name + "' (it has: " + list_names(scene.interfaces) + ")");
     return;
   }
   // The keys of the same section when there are any (a misspelt field), else all of them.
