@@ -23,6 +23,19 @@ struct Material {
 };
 
 // Mohr-Coulomb interface with the bilinear roughness degradation of seed Eq. 2-3.
+// What drives an interface's loss of friction from phi_p to phi_r = phi_p - i
+// (forward/contact/friction_law.hpp; docs/scene-format.md, "Friction laws").
+enum class FrictionLaw {
+  Bilinear,           // by slip, linear over d_c: seed Eq. 2-3 (the default)
+  Exponential,        // by slip, exp(-d / d_c)
+  VelocityWeakening,  // by slip speed, 1 / (1 + |v| / v_w): flash heating
+};
+
+// The law's name in a scene file ("bilinear", "exponential", "velocity_weakening").
+const char* to_string(FrictionLaw law);
+inline constexpr FrictionLaw kFrictionLaws[] = {FrictionLaw::Bilinear, FrictionLaw::Exponential,
+                                                FrictionLaw::VelocityWeakening};
+
 struct Interface {
   std::string name;
   double friction_angle = 0.0;    // peak friction angle phi_p, degrees
@@ -34,6 +47,8 @@ struct Interface {
   // p), i = p/100 * phi_p is kept in step with phi_p by whoever changes either one (the
   // reader, a study parameter); empty when roughness_angle was given.
   std::optional<double> degradation_percent;
+  FrictionLaw law = FrictionLaw::Bilinear;
+  double weakening_velocity = 0.1;  // v_w, m/s (velocity_weakening): half the roughness gone at v_w
 };
 
 struct BlockInput {

@@ -239,6 +239,8 @@ void check_materials_and_interfaces(const Scene& scene, std::vector<SceneError>&
            "must be in [0, friction_angle] so the residual angle is >= 0", errors);
     expect(positive(f.critical_distance_ratio), key("critical_distance_ratio"),
            f.critical_distance_ratio, "must be > 0", errors);
+    expect(positive(f.weakening_velocity), key("weakening_velocity"), f.weakening_velocity, "must be > 0 m/s",
+           errors);
   }
 }
 
@@ -358,6 +360,15 @@ void check_measure(const Scene& scene, const std::vector<Box>& boxes,
 }
 
 }  // namespace
+
+const char* to_string(FrictionLaw law) {
+  switch (law) {
+    case FrictionLaw::Bilinear: return "bilinear";
+    case FrictionLaw::Exponential: return "exponential";
+    case FrictionLaw::VelocityWeakening: return "velocity_weakening";
+  }
+  return "?";
+}
 
 const char* to_string(Integrator integrator) {
   switch (integrator) {

@@ -65,7 +65,7 @@ Scene base_scene(double duration, double step, double output_interval, Integrato
   return s;
 }
 
-int add_interface(Scene& s, const std::string& name, double friction_angle) {
+[[maybe_unused]] int add_interface(Scene& s, const std::string& name, double friction_angle) {
   Interface face;
   face.name = name;
   face.friction_angle = friction_angle;

@@ -16,67 +16,13 @@
 #include <sstream>
 
 #include "tests/contact_scene_audit.hpp"
+#include "tests/slope_scene.hpp"
 #include "verify/analytic.hpp"
 
 namespace ddafit {
 namespace {
 
 constexpr double kDisplacementTolerance = 0.01;
-constexpr double kDuration = 1.5, kStep = 1.0e-3, kOutput = 0.01;  // s
-
-struct Slope {
-  Vec2 along, up;
-  explicit Slope(double degrees)
-      : along(std::cos(degrees * kDegree), -std::sin(degrees * kDegree)), up(-along.y(), along.x()) {}
-  Vec2 at(double s, double h) const { return s * along + h * up; }
-};
-
-struct Crossing {
-  double slope = 28.0, friction = 18.0;  // alpha, phi_p (deg)
-  double length = 1.2, height = 0.6;     // slider (m)
-  double spacing = 1.0;                  // of the joints, along the slope (m)
-  double speed = 0.0;                    // initial, down the slope (m/s)
-  double front_gap = 0.05;               // from the slider's front to the first joint ahead (m)
-  double roughness = 0.0, dc_ratio = 0.01;  // i (deg) and d_c / slider length (seed Eq. 2)
-};
-
-std::string describe(const Crossing& c, Integrator integrator) {
-  std::ostringstream out;
-  out << name_of(integrator) << ": alpha " << c.slope << ", phi " << c.friction << ", i " << c.roughness << ", slider "
-      << c.length << " x " << c.height << ", joints every " << c.spacing << " m, v0 " << c.speed << " m/s";
-  return out.str();
-}
-
-// A straight slope made of fixed blocks `spacing` long (flush: one line, joints across it),
-// the slider on it with its front `front_gap` before a joint.
-Scene crossing_scene(const Crossing& c, Integrator integrator) {
-  Scene s = base_scene(kDuration, kStep, kOutput, integrator);
-  Interface face;
-  face.name = "slope";
-  face.friction_angle = c.friction;
-  face.roughness_angle = c.roughness;
-  face.critical_distance_ratio = c.dc_ratio;
-  s.interfaces.push_back(face);
-  s.default_interface = 0;
-  const Slope slope(c.slope);
-  const double g = 9.81;
-  const double a = g * (std::sin(c.slope * kDegree) - std::cos(c.slope * kDegree) * std::tan(c.friction * kDegree));
-  const double travel = c.speed * kDuration + 0.5 * std::max(a, 1.0) * kDuration * kDuration;
-  int k = 1;
-  while (k * c.spacing - c.front_gap - c.length < 0.2) ++k;
-  const double rear = k * c.spacing - c.front_gap - c.length;
-  const int blocks = static_cast<int>(std::ceil((rear + c.length + travel + 1.0) / c.spacing));
-  for (int j = 0; j < blocks; ++j) {
-    const double s0 = j * c.spacing, s1 = s0 + c.spacing;
-    s.blocks.push_back(block("base_" + std::to_string(j),
-                             {slope.at(s0, 0), slope.at(s0, -1), slope.at(s1, -1), slope.at(s1, 0)}, true, 0, "base"));
-  }
-  BlockInput slider = block("slider", box(slope.at(rear, 0), slope.along, slope.up, c.length, c.height), false);
-  slider.velocity = c.speed * slope.along;
-  s.blocks.push_back(slider);
-  s.measure.push_back({"centre", slope.at(rear + 0.5 * c.length, 0.5 * c.height)});
-  return s;
-}
 
 // Largest relative error of the slider's displacement along the slope against seed Eq. 4
 // (Eq. 5 by RK4 when it degrades) over the outputs where it has moved 1 cm.

@@ -64,10 +64,18 @@ struct Outcome {
   std::string error;
 };
 
+// What a key needs the scene to say first: v_w is read by the velocity_weakening law only.
+Overrides setup_for(const std::string& key) {
+  if (key == "interfaces.clay.weakening_velocity") return {{"interfaces.clay.law", "velocity_weakening"}};
+  return {};
+}
+
 Outcome as_text(const std::string& key, double value) {
   Outcome o;
   try {
-    const Scene s = parse_scene(kScene, "t", "", {{key, exact(value)}});
+    Overrides overrides = setup_for(key);
+    overrides.emplace_back(key, exact(value));
+    const Scene s = parse_scene(kScene, "t", "", overrides);
     o = {true, scene_to_yaml(s) + mesh_text(s), ""};
   } catch (const SceneReadError& e) {
     o.error = e.what();
@@ -88,13 +96,13 @@ Outcome as_number(const Scene& base, const std::string& key, double value) {
 }
 
 TEST(SceneParameter, EveryKeyGivesTheSceneTheTextGivesOrRefusesWhatTheTextRefuses) {
-  const Scene base = parse_scene(kScene, "t");
   // Spread over the ranges of the table's keys: each key gets some it accepts and some it
   // refuses (negative, not whole, too large).
   const std::vector<double> values{0.0, 0.0025, 0.5, 1.2, 2.0, 3.0, 25.0, 5000.0, 1e5, -1.0, 2.5, 1e9};
   for (const std::string& pattern : settable_keys()) {
     const std::string key = concrete(pattern);
     if (key == "interfaces.clay.roughness_angle") continue;  // the one intended difference: next test
+    const Scene base = parse_scene(kScene, "t", "", setup_for(key));
     int accepted = 0;
     for (double v : values) {
       const Outcome text = as_text(key, v), number = as_number(base, key, v);

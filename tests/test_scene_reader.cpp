@@ -106,6 +106,25 @@ TEST(SceneReader, RoughnessAndDegradationBothGiven) {
                         "interfaces.clay", "not both"));
 }
 
+TEST(SceneReader, UnknownFrictionLaw) {
+  // A misspelt law must not fall back to the default silently: the fit would rank the
+  // wrong hypothesis.
+  EXPECT_TRUE(FailsWith(with("roughness_angle: 5", "roughness_angle: 5, law: exponentail"), "interfaces.clay.law",
+                        "use bilinear, exponential or velocity_weakening"));
+}
+
+TEST(SceneReader, WeakeningVelocityWithoutItsLaw) {
+  // v_w is read by velocity_weakening only; given to another law it would be ignored.
+  EXPECT_TRUE(FailsWith(with("roughness_angle: 5", "roughness_angle: 5, weakening_velocity: 0.2"),
+                        "interfaces.clay.weakening_velocity", "law: velocity_weakening"));
+}
+
+TEST(SceneReader, WeakeningVelocityNotPositive) {
+  // mu(v) divides by v_w.
+  EXPECT_TRUE(FailsWith(with("roughness_angle: 5", "roughness_angle: 5, law: velocity_weakening, weakening_velocity: 0"),
+                        "interfaces.clay.weakening_velocity", "> 0"));
+}
+
 TEST(SceneReader, UnknownMaterial) {
   EXPECT_TRUE(FailsWith(with("name: slider, material: rock", "name: slider, material: granite"),
                         "blocks[1].material", "unknown material 'granite'"));
@@ -239,7 +258,7 @@ TEST(SceneReader, WrittenSceneReadsBackExactly) {
   // The mesh generator writes scenes with scene_to_yaml; nothing may drift on the way.
   Scene s = parse_scene(kExample, "t");
   s.gravity = Vec2(0.1, -9.80665);
-  s.interfaces.push_back({"joint", 1.0 / 3.0, 1e5, 2.5e4, 0.2, 0.05, std::nullopt});
+  s.interfaces.push_back({"joint", 1.0 / 3.0, 1e5, 2.5e4, 0.2, 0.05, std::nullopt, FrictionLaw::VelocityWeakening, 0.3});
   s.contact_rules[0].interface = 1;
   s.blocks[1].velocity = Vec2(1.0 / 7.0, -2e-300);
   s.blocks[1].angular_velocity = -0.3;
@@ -264,6 +283,8 @@ TEST(SceneReader, WrittenSceneReadsBackExactly) {
     EXPECT_EQ(r.interfaces[k].tensile_strength, s.interfaces[k].tensile_strength);
     EXPECT_EQ(r.interfaces[k].roughness_angle, s.interfaces[k].roughness_angle);
     EXPECT_EQ(r.interfaces[k].critical_distance_ratio, s.interfaces[k].critical_distance_ratio);
+    EXPECT_EQ(r.interfaces[k].law, s.interfaces[k].law);
+    EXPECT_EQ(r.interfaces[k].weakening_velocity, s.interfaces[k].weakening_velocity);
   }
   ASSERT_EQ(r.blocks.size(), s.blocks.size());
   for (size_t k = 0; k < s.blocks.size(); ++k) {

@@ -115,6 +115,8 @@ struct SlipHistory {
   int interface = -1;
   double slip = 0.0;               // accumulated while the face touches, m
   double last_slip = 0.0;          // of the last (sub)step: the mid-step predictor
+  double slip_rate = 0.0;          // m/s over the last (sub)step (rate laws)
+  double previous_slip_rate = 0.0; // m/s over the (sub)step before: the rate predictor
   double critical_distance = 0.0;  // d_c, m
   double increment = 0.0;          // this (sub)step's slip, gathered from the points
   double friction = 0.0;           // tan(phi) at the predicted slip (contact_law.hpp)

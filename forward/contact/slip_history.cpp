@@ -14,7 +14,7 @@ void refresh_friction(const BlockSystem& s, SlipHistory& h) {
   if (h.settled) return;
   const Interface& face = s.interfaces[h.interface];
   h.friction = friction_coefficient(face, h);
-  h.settled = friction_law_settled(face, h.slip, h.critical_distance);
+  h.settled = friction_law_settled(face, {h.slip, h.slip_rate, h.critical_distance});
 }
 
 // Sorts the histories by key (the next step finds a face's history by binary search) and
@@ -92,7 +92,7 @@ void assign_histories(const BlockSystem& s, ContactSet& contacts) {
 
 void reset_histories(const BlockSystem& s, ContactSet& contacts) {
   for (SlipHistory& h : contacts.histories) {
-    h.slip = h.last_slip = h.increment = 0.0;
+    h.slip = h.last_slip = h.increment = h.slip_rate = h.previous_slip_rate = 0.0;
     h.settled = false;
     refresh_friction(s, h);
   }
@@ -100,13 +100,13 @@ void reset_histories(const BlockSystem& s, ContactSet& contacts) {
     if (m.history >= 0) m.friction = contacts.histories[m.history].friction;
 }
 
-void advance_histories(const BlockSystem& s, ContactSet& contacts) {
+void advance_histories(const BlockSystem& s, ContactSet& contacts, double duration) {
   for (const ContactManifold& m : contacts.manifolds)
     if (m.history >= 0)
       for (int q = 0; q < m.point_count; ++q) gather_slip(contacts.histories[m.history], m.points[q].slip);
   bool any = false;
   for (SlipHistory& h : contacts.histories) {
-    add_slip(h);
+    add_slip(h, duration);
     refresh_friction(s, h);
     any = any || h.changed;
   }

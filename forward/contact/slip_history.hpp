@@ -29,9 +29,9 @@ void assign_histories(const BlockSystem& system, ContactSet& contacts);
 // Forgets every face's slip (the quiet start's settling is not part of the slide).
 void reset_histories(const BlockSystem& system, ContactSet& contacts);
 
-// After a (sub)step whose points have their `slip` set (0 for an open point): each face's
-// slip grows by the largest of its points' (contact_law.hpp, add_slip), and the friction
-// of every manifold follows.
-void advance_histories(const BlockSystem& system, ContactSet& contacts);
+// After a (sub)step of `duration` seconds whose points have their `slip` set (0 for an open
+// point): each face's slip grows by the largest of its points' (contact_law.hpp, add_slip),
+// its slip speed is that over the duration, and the friction of every manifold follows.
+void advance_histories(const BlockSystem& system, ContactSet& contacts, double duration);
 
 }  // namespace ddafit

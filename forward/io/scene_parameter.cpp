@@ -69,6 +69,11 @@ const Row kRows[] = {
      }},
     {"interfaces", "critical_distance_ratio", Entry::Interface, false,
      [](Scene& s, int k, double v) -> const char* { return s.interfaces[k].critical_distance_ratio = v, nullptr; }},
+    {"interfaces", "weakening_velocity", Entry::Interface, false,
+     [](Scene& s, int k, double v) -> const char* {
+       if (s.interfaces[k].law != FrictionLaw::VelocityWeakening) return "is read only by law: velocity_weakening";
+       return s.interfaces[k].weakening_velocity = v, nullptr;
+     }},
     {"mesh", "block_size", Entry::None, true,
      [](Scene& s, int, double v) -> const char* {
        if (!(v > 0.0)) return "must be in (0, 1e6] m";  // 0 means "unset" only in a file

@@ -73,6 +73,13 @@ class Reader : public YamlChecks {
   }
 
  private:
+  FrictionLaw friction_law(const YAML::Node& n, const std::string& key) const {
+    const std::string name = text(n, key);
+    for (FrictionLaw law : kFrictionLaws)
+      if (name == to_string(law)) return law;
+    fail(key, "is '" + name + "'; use bilinear, exponential or velocity_weakening");
+  }
+
   Integrator integrator(const YAML::Node& n) const {
     const std::string name = text(n, "time.integrator");
     for (Integrator i : {Integrator::Implicit, Integrator::Substep, Integrator::Auto})
@@ -99,7 +106,7 @@ class Reader : public YamlChecks {
       const std::string path = "interfaces." + name;
       const YAML::Node f = node[name];
       check_keys(f, path, {"friction_angle", "cohesion", "tensile_strength", "roughness_angle",
-                           "degradation_percent", "critical_distance_ratio"});
+                           "degradation_percent", "critical_distance_ratio", "law", "weakening_velocity"});
       Interface in;
       in.name = name;
       in.friction_angle = req_number(f, path, "friction_angle", "give degrees");
@@ -107,6 +114,11 @@ class Reader : public YamlChecks {
       opt_number(f, path, "tensile_strength", in.tensile_strength);
       opt_number(f, path, "critical_distance_ratio", in.critical_distance_ratio);
       opt_number(f, path, "roughness_angle", in.roughness_angle);
+      if (const YAML::Node n = f["law"]) in.law = friction_law(n, path + ".law");
+      opt_number(f, path, "weakening_velocity", in.weakening_velocity);
+      if (f["weakening_velocity"] && in.law != FrictionLaw::VelocityWeakening)
+        fail(path + ".weakening_velocity", "is read only by law: velocity_weakening (this interface's law is " +
+                                               std::string(to_string(in.law)) + ")");
       if (const YAML::Node n = f["degradation_percent"]) {
         if (f["roughness_angle"])
           fail(path, "give either roughness_angle or degradation_percent, not both");

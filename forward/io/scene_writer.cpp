@@ -75,14 +75,16 @@ std::string scene_to_yaml(const Scene& s) {
       out << Key << f.name << Value;
       // The roughness as the scene gave it, so that a later change of the peak angle moves
       // a percentage-given roughness with it.
-      put_flow_map(out, {{"friction_angle", num(f.friction_angle)},
-                         {"cohesion", num(f.cohesion)},
-                         {"tensile_strength", num(f.tensile_strength)},
-                         f.degradation_percent ? std::pair<std::string, std::string>("degradation_percent",
-                                                                                     num(*f.degradation_percent))
-                                               : std::pair<std::string, std::string>("roughness_angle",
-                                                                                     num(f.roughness_angle)),
-                         {"critical_distance_ratio", num(f.critical_distance_ratio)}});
+      std::vector<std::pair<std::string, std::string>> fields{
+          {"friction_angle", num(f.friction_angle)},
+          {"cohesion", num(f.cohesion)},
+          {"tensile_strength", num(f.tensile_strength)},
+          f.degradation_percent ? std::pair<std::string, std::string>("degradation_percent", num(*f.degradation_percent))
+                                : std::pair<std::string, std::string>("roughness_angle", num(f.roughness_angle)),
+          {"critical_distance_ratio", num(f.critical_distance_ratio)}};
+      if (f.law != FrictionLaw::Bilinear) fields.emplace_back("law", to_string(f.law));
+      if (f.law == FrictionLaw::VelocityWeakening) fields.emplace_back("weakening_velocity", num(f.weakening_velocity));
+      put_flow_map(out, fields);
     }
     out << EndMap;
   }

@@ -45,7 +45,7 @@ void update_blocks(ImplicitStepContext& ctx, double dt) {
       }
     }
   }
-  advance_histories(s, contacts);
+  advance_histories(s, contacts, dt);
 }
 
 }  // namespace ddafit

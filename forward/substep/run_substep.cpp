@@ -139,7 +139,7 @@ void run_one_substep(SubstepContext& w, const SweepSettings& sweep) {
   integrate_positions(w.state, sweep.h, w.start_velocity, w.moves);
   solve_contacts(w.contacts.manifolds, w.colours, relax, w.state);
   converge_deep(w.contacts.manifolds, relax, kDeepIterations, w.state);
-  advance_slip(w.system, w.moves, w.contacts);
+  advance_slip(w.system, w.moves, sweep.h, w.contacts);
 }
 
 // A step of length dt on this step's manifolds: substeps, then the blocks move (once,

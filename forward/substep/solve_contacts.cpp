@@ -179,7 +179,7 @@ void correct_positions(const std::vector<ContactManifold>& manifolds, const Posi
   }
 }
 
-void advance_slip(const BlockSystem& s, const std::vector<Vec3>& moves, ContactSet& contacts) {
+void advance_slip(const BlockSystem& s, const std::vector<Vec3>& moves, double h, ContactSet& contacts) {
   std::vector<ContactManifold>& manifolds = contacts.manifolds;
   const long n = static_cast<long>(manifolds.size());
 #pragma omp parallel for schedule(static) if (n >= kParallelMinimum)
@@ -203,7 +203,7 @@ void advance_slip(const BlockSystem& s, const std::vector<Vec3>& moves, ContactS
       }
     }
   }
-  advance_histories(s, contacts);
+  advance_histories(s, contacts, h);
 }
 
 }  // namespace ddafit

@@ -76,7 +76,7 @@ void correct_positions(const std::vector<ContactManifold>& manifolds, const Posi
 // After a substep moved the blocks by `moves`: the slip of each closed point, gathered into
 // its face's slip history (seed Eq. 2, forward/contact/slip_history.hpp), and the friction
 // that follows; a bond is lost once its point slides or opens (contact_law.hpp).
-void advance_slip(const BlockSystem& system, const std::vector<Vec3>& moves, ContactSet& contacts);
+void advance_slip(const BlockSystem& system, const std::vector<Vec3>& moves, double h, ContactSet& contacts);
 
 // The gap of a point now: its gap at the start of the step plus the relative move of the
 // two blocks at the point along the normal.
