@@ -41,6 +41,7 @@ struct BlockSystem {
   std::vector<Mat3> elastic;       // per material: C of plane strain or stress
   std::vector<double> density;     // per material
   std::vector<Interface> interfaces;
+  Water water;  // the pore pressure on the faces (forward/water/hydrostatic.hpp)
   int group_count = 0;
   std::vector<int> group_interface;  // group_count x group_count, -1 = none
   std::vector<std::string> group_names;

@@ -51,6 +51,16 @@ struct Interface {
   double weakening_velocity = 0.1;  // v_w, m/s (velocity_weakening): half the roughness gone at v_w
 };
 
+// Water in the slope (forward/water/hydrostatic.hpp; docs/scene-format.md, "Water"): a
+// hydrostatic pore pressure p = rho_w |g| (z_w(x) - y) wherever a block face lies below the
+// water surface z_w, on every face including those in contact (joint water pressure).
+struct Water {
+  std::optional<double> level;  // m: a horizontal surface (a reservoir, the slope in equilibrium with it)
+  std::vector<Vec2> table;      // (x, z_w) of a phreatic surface, x increasing, flat beyond its ends
+  double density = 1000.0;      // rho_w, kg/m^3
+  bool present() const { return level.has_value() || !table.empty(); }
+};
+
 struct BlockInput {
   std::string name;
   std::string group;  // defaults to the name
@@ -120,6 +130,7 @@ struct Scene {
   std::vector<MeasurePoint> measure;
   double output_interval = 0.0;  // s between history rows; 0 = every step
   double rest_speed = 0.1;       // m/s; a point slower than this is at rest
+  Water water;                   // none unless the scene gives `water:`
   SimulationOptions options;
 
   // Regions to be cut into blocks (forward/mesh). Meshing appends their blocks after

@@ -185,6 +185,12 @@ void check_settings(const Scene& scene, std::vector<SceneError>& errors) {
   expect(non_negative(scene.output_interval), "output.interval", scene.output_interval,
          "must be >= 0 (0 = every step)", errors);
   expect(positive(scene.rest_speed), "rest_speed", scene.rest_speed, "must be > 0 m/s", errors);
+  if (scene.water.present()) {
+    expect(positive(scene.water.density), "water.density", scene.water.density, "must be > 0 kg/m^3", errors);
+    // z is the scene's y: the hydrostatic pressure needs gravity along -y.
+    if (!(scene.gravity.x() == 0.0 && scene.gravity.y() < 0.0))
+      errors.push_back({"water", "needs gravity along -y (the water surface's z is the scene's y)"});
+  }
   // A run must end and its output must fit: the steps it takes at the largest step and the
   // history rows it writes are bounded (an output interval of 1e-14 s once stalled at 0 %
   // forever, and a step of 1e-300 s ran without end).

@@ -17,6 +17,7 @@
 #include "forward/geometry.hpp"
 #include "forward/simulation.hpp"
 #include "forward/common/energy_check.hpp"
+#include "forward/water/hydrostatic.hpp"
 #include "verify/cases.hpp"
 
 namespace ddafit {
@@ -142,6 +143,7 @@ struct RunAudit {
   std::vector<double> mass;        // per block, at t = 0 (mass is conserved; area is not, by strain)
   std::vector<Vec2> centroid0;     // per block, at t = 0
   double initial_kinetic = 0.0;
+  double initial_water = 0.0;      // J/m, the water loads' potential at t = 0 (hydrostatic.hpp)
   double floor = 0.0;              // J/m, kEnergyFloorHeight x free weight
   // Worst values over the output times.
   double energy_excess = -std::numeric_limits<double>::infinity();  // J/m: kinetic - budget
@@ -174,6 +176,7 @@ SimulationHooks audit_hooks(RunAudit& audit, const Vec2& gravity) {
         if (!s.blocks[b].fixed) weight += s.mass(b) * gravity.norm();
       }
       audit.initial_kinetic = kinetic_energy(s);
+      audit.initial_water = water_potential(s, gravity.norm());
       audit.floor = kEnergyFloorHeight * weight;
     }
     ++audit.outputs;
@@ -183,6 +186,7 @@ SimulationHooks audit_hooks(RunAudit& audit, const Vec2& gravity) {
     double work = 0.0;
     for (int b = 0; b < n; ++b)
       if (!s.blocks[b].fixed) work += audit.mass[b] * gravity.dot(s.blocks[b].centroid - audit.centroid0[b]);
+    work += audit.initial_water - water_potential(s, gravity.norm());  // buoyancy and pore pressure: 0 when dry
     const double kinetic = kinetic_energy(s);
     const double excess = kinetic - (audit.initial_kinetic + work);
     const double scale = audit.initial_kinetic + std::abs(work);

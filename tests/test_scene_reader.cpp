@@ -125,6 +125,29 @@ TEST(SceneReader, WeakeningVelocityNotPositive) {
                         "interfaces.clay.weakening_velocity", "> 0"));
 }
 
+TEST(SceneReader, WaterWithoutASurface) {
+  // Only a density says nothing about where the water stands.
+  EXPECT_TRUE(FailsWith(kExample + "water: {density: 1000}\n", "water", "give level: Z"));
+}
+
+TEST(SceneReader, WaterTableGoingBack) {
+  // z_w(x) must be a function of x.
+  EXPECT_TRUE(FailsWith(kExample + "water: {table: [[0, 5], [10, 4], [10, 3]]}\n", "water.table[2]", "x must increase"));
+}
+
+TEST(SceneReader, WaterTableFileMissing) {
+  EXPECT_TRUE(FailsWith(kExample + "water: {table: no_such_table.csv}\n", "water.table", "no_such_table.csv"));
+}
+
+TEST(SceneReader, WaterDensityNotPositive) {
+  EXPECT_TRUE(FailsWith(kExample + "water: {level: 3, density: 0}\n", "water.density", "> 0"));
+}
+
+TEST(SceneReader, WaterUnderSidewaysGravity) {
+  // The pressure's depth is measured along y.
+  EXPECT_TRUE(FailsWith(with("gravity: [0, -9.81]", "gravity: [1, -9.81]") + "water: {level: 3}\n", "water", "gravity along -y"));
+}
+
 TEST(SceneReader, UnknownMaterial) {
   EXPECT_TRUE(FailsWith(with("name: slider, material: rock", "name: slider, material: granite"),
                         "blocks[1].material", "unknown material 'granite'"));
@@ -259,6 +282,10 @@ TEST(SceneReader, WrittenSceneReadsBackExactly) {
   Scene s = parse_scene(kExample, "t");
   s.gravity = Vec2(0.1, -9.80665);
   s.interfaces.push_back({"joint", 1.0 / 3.0, 1e5, 2.5e4, 0.2, 0.05, std::nullopt, FrictionLaw::VelocityWeakening, 0.3});
+  s.gravity = Vec2(0.0, -9.80665);  // water needs gravity along -y
+  s.water.level = 1.0 / 3.0;
+  s.water.table = {{-1.5, 2.0 / 3.0}, {4.0, 1e-7}};
+  s.water.density = 1025.0;
   s.contact_rules[0].interface = 1;
   s.blocks[1].velocity = Vec2(1.0 / 7.0, -2e-300);
   s.blocks[1].angular_velocity = -0.3;
@@ -284,6 +311,9 @@ TEST(SceneReader, WrittenSceneReadsBackExactly) {
     EXPECT_EQ(r.interfaces[k].roughness_angle, s.interfaces[k].roughness_angle);
     EXPECT_EQ(r.interfaces[k].critical_distance_ratio, s.interfaces[k].critical_distance_ratio);
     EXPECT_EQ(r.interfaces[k].law, s.interfaces[k].law);
+    EXPECT_EQ(r.water.level, s.water.level);
+    EXPECT_EQ(r.water.table, s.water.table);
+    EXPECT_EQ(r.water.density, s.water.density);
     EXPECT_EQ(r.interfaces[k].weakening_velocity, s.interfaces[k].weakening_velocity);
   }
   ASSERT_EQ(r.blocks.size(), s.blocks.size());

@@ -1,5 +1,7 @@
 #include "forward/common/energy_check.hpp"
 
+#include "forward/water/hydrostatic.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <sstream>
@@ -23,7 +25,7 @@ double potential_energy(const BlockSystem& s, const Vec2& gravity) {
   double energy = 0.0;
   for (int b = 0; b < static_cast<int>(s.blocks.size()); ++b)
     if (!s.blocks[b].fixed) energy -= s.mass(b) * gravity.dot(s.blocks[b].centroid);
-  return energy;
+  return energy + water_potential(s, gravity.norm());
 }
 
 EnergyAudit start_energy_audit(const BlockSystem& s, const Vec2& gravity) {

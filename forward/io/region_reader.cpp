@@ -40,12 +40,12 @@ std::vector<Vec2> without_repeats(std::vector<Vec2> ring) {
   return out;
 }
 
-std::string resolve(const std::string& base_dir, const std::string& file) {
+}  // namespace
+
+std::string resolve_input_path(const std::string& base_dir, const std::string& file) {
   const std::filesystem::path p(file);
   return p.is_absolute() || base_dir.empty() ? file : (std::filesystem::path(base_dir) / p).string();
 }
-
-}  // namespace
 
 std::vector<Vec2> read_polyline_csv(const YamlChecks& checks, const std::string& path, const std::string& key) {
   std::string problem;
@@ -107,8 +107,8 @@ void read_regions(const YamlChecks& c, const YAML::Node& root, const std::string
     } else if (const YAML::Node b = r["between"]) {
       const std::string bp = path + ".between";
       c.check_keys(b, bp, {"upper", "lower", "x_min", "x_max"});
-      const auto upper = read_polyline_csv(c, resolve(base_dir, c.text(c.required(b, bp, "upper", "a CSV file"), bp + ".upper")), bp + ".upper");
-      const auto lower = read_polyline_csv(c, resolve(base_dir, c.text(c.required(b, bp, "lower", "a CSV file"), bp + ".lower")), bp + ".lower");
+      const auto upper = read_polyline_csv(c, resolve_input_path(base_dir, c.text(c.required(b, bp, "upper", "a CSV file"), bp + ".upper")), bp + ".upper");
+      const auto lower = read_polyline_csv(c, resolve_input_path(base_dir, c.text(c.required(b, bp, "lower", "a CSV file"), bp + ".lower")), bp + ".lower");
       double x0 = std::max(upper.front().x(), lower.front().x()), x1 = std::min(upper.back().x(), lower.back().x());
       c.opt_number(b, bp, "x_min", x0);
       c.opt_number(b, bp, "x_max", x1);
@@ -122,7 +122,7 @@ void read_regions(const YamlChecks& c, const YAML::Node& root, const std::string
       const std::string bp = path + ".below";
       c.check_keys(below, bp, {"surface", "base"});
       const auto surface = read_polyline_csv(
-          c, resolve(base_dir, c.text(c.required(below, bp, "surface", "a CSV file"), bp + ".surface")), bp + ".surface");
+          c, resolve_input_path(base_dir, c.text(c.required(below, bp, "surface", "a CSV file"), bp + ".surface")), bp + ".surface");
       const double base = c.req_number(below, bp, "base", "give the elevation of the region's bottom");
       for (const Vec2& p : surface)
         if (!(p.y() > base)) c.fail(bp + ".base", "must lie below every point of the surface");
@@ -145,7 +145,7 @@ void read_regions(const YamlChecks& c, const YAML::Node& root, const std::string
         c.opt_number(sets[q], jp, "offset", set.offset);
         if (const YAML::Node pt = sets[q]["parallel_to"]) {
           if (sets[q]["dip"]) c.fail(jp, "give either dip (straight joints) or parallel_to (a polyline), not both");
-          set.parallel_to = read_polyline_csv(c, resolve(base_dir, c.text(pt, jp + ".parallel_to")), jp + ".parallel_to");
+          set.parallel_to = read_polyline_csv(c, resolve_input_path(base_dir, c.text(pt, jp + ".parallel_to")), jp + ".parallel_to");
         }
         if (!(set.dip >= 0.0 && set.dip <= 180.0)) c.fail(jp + ".dip", "must be in [0, 180] degrees");
         if (!(set.spacing_ratio > 0.0 && set.spacing_ratio <= 1e3)) c.fail(jp + ".spacing_ratio", "must be in (0, 1000]");

@@ -14,6 +14,9 @@ namespace ddafit::io {
 // paths are relative to base_dir. Throws SceneReadError naming the key.
 void read_regions(const YamlChecks& checks, const YAML::Node& root, const std::string& base_dir, Scene& scene);
 
+// A file named in a scene: relative paths start at the scene file's folder.
+std::string resolve_input_path(const std::string& base_dir, const std::string& file);
+
 // A polyline from a CSV file of x,y rows (a header line and lines starting with '#'
 // are skipped). Throws SceneReadError naming `key`.
 std::vector<Vec2> read_polyline_csv(const YamlChecks& checks, const std::string& path, const std::string& key);

@@ -2,6 +2,7 @@
 // scene_to_yaml(), is in scene_writer.cpp.
 #include "forward/io/scene_reader.hpp"
 #include "forward/io/region_reader.hpp"
+#include "forward/io/water_reader.hpp"
 #include "forward/io/text_input.hpp"
 #include "forward/io/yaml_checks.hpp"
 #include "forward/mesh/region.hpp"
@@ -31,7 +32,7 @@ class Reader : public YamlChecks {
     if (!root.IsMap()) fail("(top level)", "expected a map of scene keys (time, materials, ...)");
     check_keys(root, "", {"gravity", "time", "materials", "interfaces", "blocks", "contacts",
                           "default_interface", "measure", "output", "rest_speed", "control", "mesh",
-                          "regions"});  // "base" is resolved before reading (load_tree)
+                          "regions", "water"});  // "base" is resolved before reading (load_tree)
     Scene s;
     if (const YAML::Node n = root["gravity"]) s.gravity = vec2(n, "gravity");
     const YAML::Node time = required(root, "", "time", "add time: {duration: ..., step: ...}");
@@ -65,6 +66,7 @@ class Reader : public YamlChecks {
       opt_number(n, "output", "interval", s.output_interval);
     }
     opt_number(root, "", "rest_speed", s.rest_speed);
+    if (const YAML::Node n = root["water"]) read_water(*this, n, base_dir_, s);
     if (const YAML::Node n = root["control"]) read_control(n, s.options);
 
     const std::vector<SceneError> errors = validate_scene(s);

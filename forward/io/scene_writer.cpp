@@ -138,6 +138,16 @@ std::string scene_to_yaml(const Scene& s) {
   out << Key << "output" << Value;
   put_flow_map(out, {{"interval", num(s.output_interval)}});
   out << Key << "rest_speed" << Value << num(s.rest_speed);
+  if (s.water.present()) {
+    out << Key << "water" << Value << BeginMap;
+    if (s.water.level) out << Key << "level" << Value << num(*s.water.level);
+    if (!s.water.table.empty()) {
+      out << Key << "table" << Value << YAML::Flow << BeginSeq;
+      for (const Vec2& p : s.water.table) put_vec2(out, p);
+      out << EndSeq;
+    }
+    out << Key << "density" << Value << num(s.water.density) << EndMap;
+  }
 
   // Only options that differ from the defaults, so the file shows what was tuned.
   const SimulationOptions defaults;

@@ -4,6 +4,7 @@
 
 #include "forward/mass_matrix.hpp"
 #include "forward/step/point_springs.hpp"
+#include "forward/water/hydrostatic.hpp"
 
 namespace ddafit {
 namespace {
@@ -11,7 +12,9 @@ namespace {
 void assemble_blocks(const BlockSystem& s, const StepParameters& step, BlockSparseMatrix& k,
                      Eigen::VectorXd& f) {
   const double dt = step.time_step;
-  for (const Block& b : s.blocks) {
+  const double g = step.gravity.norm();
+  for (int bid = 0; bid < static_cast<int>(s.blocks.size()); ++bid) {
+    const Block& b = s.blocks[bid];
     if (b.unknown < 0) continue;
     const double rho = s.density[b.material];
     const Mat6 m = rho * unit_mass_matrix(b);
@@ -24,6 +27,11 @@ void assemble_blocks(const BlockSystem& s, const StepParameters& step, BlockSpar
     fb.segment<3>(3) -= b.area * b.stress;
     fb[0] += rho * b.area * step.gravity.x();
     fb[1] += rho * b.area * step.gravity.y();
+    // The water's force and moment half a step ahead (hydrostatic.hpp). Not its strain
+    // terms: the pressure's own squeeze of a block (p/E ~ 1e-5) is nothing to the slide, and
+    // applied to the strain unknowns, which start each run unloaded, it set every wet
+    // block ringing in its first step, its contacts losing their friction for that step.
+    if (s.water.present()) fb.head<3>() += water_load(s, bid, g, 0.5 * dt * b.velocity.head<3>()).head<3>();
   }
 }
 

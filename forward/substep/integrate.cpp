@@ -2,8 +2,25 @@
 #include "forward/parallel.hpp"
 
 #include "forward/common/displace_block.hpp"
+#include "forward/water/hydrostatic.hpp"
 
 namespace ddafit {
+
+void water_accelerations(const BlockSystem& s, double gravity, double dt, SweepState& st) {
+  if (!s.water.present()) {
+    st.load_acceleration.clear();
+    return;
+  }
+  st.load_acceleration.assign(s.blocks.size(), Vec3::Zero());
+  const long n = static_cast<long>(s.blocks.size());
+#pragma omp parallel for schedule(static) if (n >= kParallelMinimum)
+  for (long b = 0; b < n; ++b) {
+    const BlockMass& m = st.masses[b];
+    if (!m.moves) continue;
+    const Vec6 load = water_load(s, static_cast<int>(b), gravity, 0.5 * dt * s.blocks[b].velocity.head<3>());
+    st.load_acceleration[b] = Vec3(m.inverse_mass * load[0], m.inverse_mass * load[1], m.inverse_inertia * load[2]);
+  }
+}
 
 void integrate_velocities(SweepState& st, const Vec2& gravity, double h, std::vector<Vec3>& start_velocity) {
   const long n = static_cast<long>(st.velocity.size());
@@ -13,6 +30,7 @@ void integrate_velocities(SweepState& st, const Vec2& gravity, double h, std::ve
     if (!st.masses[b].moves) continue;
     st.velocity[b][0] += h * gravity.x();
     st.velocity[b][1] += h * gravity.y();
+    if (!st.load_acceleration.empty()) st.velocity[b] += h * st.load_acceleration[b];
   }
 }
 

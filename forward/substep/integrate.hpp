@@ -9,7 +9,14 @@
 
 namespace ddafit {
 
-// v1 = v0 + h g on every moving block (the strain unknowns carry no inertia,
+// The water's load on every free block as accelerations (force / m, moment / I), taken
+// half the step `dt` ahead of the step's start (forward/water/hydrostatic.hpp, the
+// leapfrog); clears them in a dry scene. The
+// strain terms of the load are left to the block stress (block_stress.hpp), which takes
+// its stress from the contacts only.
+void water_accelerations(const BlockSystem& system, double gravity, double dt, SweepState& state);
+
+// v1 = v0 + h (g + a_load) on every moving block (the strain unknowns carry no inertia,
 // substep_types.hpp; a uniform body force has no moment about the centroid). Keeps v0 in
 // `start_velocity` for the position update.
 void integrate_velocities(SweepState& state, const Vec2& gravity, double h, std::vector<Vec3>& start_velocity);

@@ -11,6 +11,7 @@
 #include "forward/common/energy_check.hpp"
 #include "forward/substep/block_stress.hpp"
 #include "forward/substep/integrate.hpp"
+#include "forward/substep/integrate.hpp"
 #include "forward/substep/prepare_contacts.hpp"
 #include "forward/substep/solve_contacts.hpp"
 #include "forward/substep/substep_context.hpp"
@@ -112,6 +113,7 @@ SweepSettings prepare_step(SubstepContext& w, double h) {
   const double slop = w.detection.settings.linear_slop;
   ScopedTimer timer(w.profile->assemble);
   compute_block_masses(s, w.state.masses);
+  water_accelerations(s, w.scene.gravity.norm(), h * w.options.substeps, w.state);
   prepare_contacts(w, h, kDeepOverlap);
   w.state.deep.assign(w.contacts.manifolds.size(), 0);
   w.colours = colour_manifolds(s, w.contacts.manifolds);

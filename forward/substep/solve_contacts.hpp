@@ -37,6 +37,7 @@ struct SweepState {
   std::vector<Vec3> velocity;
   std::vector<Vec3> step_moves;
   std::vector<BlockMass> masses;
+  std::vector<Vec3> load_acceleration;  // per block, from loads other than gravity (water); empty if none
   std::vector<char> deep;  // per manifold: a point overlapped beyond its deep_overlap in a relax sweep of the step
 };
 
