@@ -76,6 +76,15 @@ struct ProfileOptions {
                             // true: they are re-fitted at every scan point (budget/2 each)
 };
 
+// One explanation of the observations to fit and rank against the others (hypotheses.hpp):
+// its own scene settings (a friction law and its fixed numbers) and, if given, its own
+// fitted parameters instead of the study's.
+struct Hypothesis {
+  std::string name;  // a file-name-safe word: its results go to OUT/hypotheses/NAME
+  std::vector<std::pair<std::string, std::string>> settings;  // after the study's settings
+  std::vector<Parameter> parameters;                          // empty: the study's
+};
+
 struct Study {
   std::string path;        // the study file, used as FILE in messages
   std::string scene_path;  // resolved against the study file's folder
@@ -85,6 +94,7 @@ struct Study {
   MethodOptions method;
   ProfileOptions profile;
   int ensemble = 8;  // realisations that measure a `model_sigma: ensemble` (forward/perturb.hpp)
+  std::vector<Hypothesis> hypotheses;  // none: one fit of the study as it stands
   bool has_model_sigma() const {
     for (const Observation& o : observations)
       if (o.model_sigma > 0.0 || o.model_sigma_from_ensemble) return true;

@@ -36,7 +36,8 @@ class StudyReader : public io::YamlChecks {
 
   Study read(const YAML::Node& root, const std::string& dir) const {
     if (!root.IsMap()) fail("(top level)", "expected a map with scene, parameters, observations");
-    check_keys(root, "", {"scene", "settings", "parameters", "observations", "method", "profile", "ensemble"});
+    check_keys(root, "", {"scene", "settings", "parameters", "observations", "method", "profile", "ensemble",
+                          "hypotheses"});
     Study s;
     s.path = file();
     const std::string scene = text(required(root, "", "scene", "name the scene file (relative to the study)"), "scene");
@@ -45,12 +46,16 @@ class StudyReader : public io::YamlChecks {
     std::error_code ec;  // a name too long for the file system is an error code, not an abort
     if (!std::filesystem::is_regular_file(s.scene_path, ec))
       fail("scene", "cannot find the file '" + io::printable(s.scene_path) + "'" + (ec ? " (" + ec.message() + ")" : ""));
-    if (const YAML::Node n = root["settings"])
-      for (const std::string& key : map_keys(n, "settings")) s.settings.emplace_back(key, YAML::Dump(n[key]));
-    const YAML::Node params = required(root, "", "parameters", "list the scene values to fit");
-    list(params, "parameters");
-    for (size_t k = 0; k < params.size(); ++k) s.parameters.push_back(parameter(params[k], indexed("parameters", k)));
-    check_parameters(s.parameters);
+    if (const YAML::Node n = root["settings"]) s.settings = settings(n, "settings");
+    if (const YAML::Node n = root["hypotheses"]) s.hypotheses = hypotheses(n);
+    // With hypotheses that all bring their own parameters, the study needs none.
+    const bool own = !s.hypotheses.empty() && std::all_of(s.hypotheses.begin(), s.hypotheses.end(),
+                                                          [](const Hypothesis& h) { return !h.parameters.empty(); });
+    if (const YAML::Node params = own ? root["parameters"] : required(root, "", "parameters", "list the scene values to fit")) {
+      s.parameters = parameter_list(params, "parameters");
+    } else {
+      s.parameters = s.hypotheses.front().parameters;  // the profile's and reports' default
+    }
     const YAML::Node obs = required(root, "", "observations", "list what was observed");
     list(obs, "observations");
     if (obs.size() == 0) fail("observations", "the list is empty; give at least one observation");
@@ -81,6 +86,42 @@ class StudyReader : public io::YamlChecks {
   }
   double bounded(const YAML::Node& map, const std::string& path, const char* key, const char* hint) const {
     return bounded(required(map, path, key, hint), join(path, key));
+  }
+
+  std::vector<std::pair<std::string, std::string>> settings(const YAML::Node& n, const std::string& path) const {
+    std::vector<std::pair<std::string, std::string>> out;
+    for (const std::string& key : map_keys(n, path)) out.emplace_back(key, YAML::Dump(n[key]));
+    return out;
+  }
+
+  std::vector<Parameter> parameter_list(const YAML::Node& n, const std::string& path) const {
+    list(n, path);
+    std::vector<Parameter> out;
+    for (size_t k = 0; k < n.size(); ++k) out.push_back(parameter(n[k], indexed(path, k)));
+    check_parameters(out, path);
+    return out;
+  }
+
+  // hypotheses: [{name, settings: {KEY: VALUE}, parameters: [...]}, ...], at least two.
+  std::vector<Hypothesis> hypotheses(const YAML::Node& n) const {
+    list(n, "hypotheses");
+    if (n.size() < 2) fail("hypotheses", "give at least two to rank (or leave the key out for one fit)");
+    std::vector<Hypothesis> out;
+    std::set<std::string> names;
+    for (size_t k = 0; k < n.size(); ++k) {
+      const std::string path = indexed("hypotheses", k);
+      check_keys(n[k], path, {"name", "settings", "parameters"});
+      Hypothesis h;
+      h.name = text(required(n[k], path, "name", "give the hypothesis a name"), join(path, "name"));
+      if (h.name.empty() || h.name.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_-") !=
+                                std::string::npos)
+        fail(join(path, "name"), "'" + io::printable(h.name) + "' must be letters, digits, _ or - (it names a folder)");
+      if (!names.insert(h.name).second) fail(join(path, "name"), "'" + h.name + "' is used twice");
+      if (const YAML::Node s = n[k]["settings"]) h.settings = settings(s, join(path, "settings"));
+      if (const YAML::Node p = n[k]["parameters"]) h.parameters = parameter_list(p, join(path, "parameters"));
+      out.push_back(std::move(h));
+    }
+    return out;
   }
 
   Parameter parameter(const YAML::Node& n, const std::string& path) const {
@@ -117,13 +158,13 @@ class StudyReader : public io::YamlChecks {
     return q;
   }
 
-  void check_parameters(const std::vector<Parameter>& ps) const {
-    if (ps.empty()) fail("parameters", "the list is empty; give at least one parameter");
+  void check_parameters(const std::vector<Parameter>& ps, const std::string& path) const {
+    if (ps.empty()) fail(path, "the list is empty; give at least one parameter");
     std::set<std::string> names, keys;
     bool continuous = false;
     for (size_t k = 0; k < ps.size(); ++k) {
-      if (!names.insert(ps[k].name).second) fail(indexed("parameters", k) + ".name", "'" + ps[k].name + "' is used twice");
-      if (!keys.insert(ps[k].key).second) fail(indexed("parameters", k) + ".key", "'" + ps[k].key + "' is set twice");
+      if (!names.insert(ps[k].name).second) fail(indexed(path, k) + ".name", "'" + ps[k].name + "' is used twice");
+      if (!keys.insert(ps[k].key).second) fail(indexed(path, k) + ".key", "'" + ps[k].key + "' is set twice");
       continuous = continuous || !ps[k].discrete();
     }
     // Both forms of one interface's roughness would overwrite each other in every run.
@@ -132,10 +173,10 @@ class StudyReader : public io::YamlChecks {
           ps[k].key.size() > tail.size() && ps[k].key.compare(ps[k].key.size() - tail.size(), tail.size(), tail) == 0) {
         const std::string stem = ps[k].key.substr(0, ps[k].key.size() - tail.size() + 1);
         if (keys.count(stem + "degradation_percent"))
-          fail(indexed("parameters", k) + ".key", "'" + ps[k].key + "' and '" + stem +
+          fail(indexed(path, k) + ".key", "'" + ps[k].key + "' and '" + stem +
                    "degradation_percent' are two forms of one roughness; make one of them the parameter");
       }
-    if (!continuous) fail("parameters", "all are discrete levels; give at least one with lower, upper, start, resolution");
+    if (!continuous) fail(path, "all are discrete levels; give at least one with lower, upper, start, resolution");
   }
 
   Observation observation(const YAML::Node& n, const std::string& path) const {
