@@ -1,5 +1,7 @@
 #include "forward/run_record.hpp"
 
+#include "forward/analysis/top_surface.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -31,6 +33,7 @@ RunRecorder::RunRecorder(const Scene& scene, const SimulationHooks& hooks, Simul
 }
 
 void RunRecorder::record_row(double time, const BlockSystem& s) {
+  result_.summary.final_surface = top_surface(s);
   for (size_t k = 0; k < s.points.size(); ++k) {
     const MaterialPoint& p = s.points[k];
     result_.history.push_back({time, static_cast<int>(k), p.position, p.position - p.initial_position,

@@ -184,6 +184,7 @@ void check_study_against_scene(const Study& study) {
     throw StudyError(study.path + ": scene: " + what);
   }
   for (size_t k = 0; k < study.observations.size(); ++k) {
+    if (study.observations[k].is_deposit()) continue;  // the whole surface, no point
     const std::string& point = study.observations[k].point;
     std::string names;
     bool found = false;

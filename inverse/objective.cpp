@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <limits>
 
+#include "forward/analysis/top_surface.hpp"
+
 namespace ddafit::inverse {
 
 double summary_value(const PointSummary& p, const std::string& quantity) {
@@ -44,11 +46,17 @@ Evaluation Objective::score(const std::vector<double>& values, const SimulationS
   for (const PointSummary& p : summary.points) e.point_names.push_back(p.name);
   for (size_t k = 0; k < m && !e.failed; ++k) {
     const Observation& o = study_.observations[k];
-    for (const PointSummary& p : summary.points)
-      if (p.name == o.point) e.simulated[k] = summary_value(p, o.quantity);
+    if (o.is_deposit()) {
+      e.simulated[k] = surface_misfit_rms(summary.final_surface, o.surface, o.from, o.to);
+    } else {
+      for (const PointSummary& p : summary.points)
+        if (p.name == o.point) e.simulated[k] = summary_value(p, o.quantity);
+    }
     if (!std::isfinite(e.simulated[k])) {
       e.failed = true;
-      e.message = "the run's summary has no finite " + o.quantity + " for point " + o.point;
+      e.message = o.is_deposit() ? "the run left no ground surface over [" + std::to_string(o.from) + ", " +
+                                       std::to_string(o.to) + "] m (a cached run from before deposits were kept?)"
+                                 : "the run's summary has no finite " + o.quantity + " for point " + o.point;
       break;
     }
     e.residuals[k] = observation_residual(o, e.simulated[k], o.effective_sigma());

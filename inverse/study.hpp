@@ -48,6 +48,12 @@ struct Observation {
   // the study's ensemble at the start point, once, before the fit.
   double model_sigma = 0.0;
   bool model_sigma_from_ensemble = false;
+  // quantity deposit_rms (no point): the RMS of the run's final ground surface
+  // (SimulationSummary::final_surface) against `surface`, over columns with x in [from, to], m.
+  std::vector<Vec2> surface;
+  double from = 0.0, to = 0.0;
+  bool is_deposit() const { return quantity == kDepositQuantity; }
+  static constexpr const char* kDepositQuantity = "deposit_rms";
   double effective_sigma() const { return std::sqrt(sigma * sigma + model_sigma * model_sigma); }
 };
 

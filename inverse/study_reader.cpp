@@ -12,6 +12,8 @@
 #include "forward/io/yaml_checks.hpp"
 #include "forward/run_summary.hpp"
 #include "inverse/study.hpp"
+
+#include "forward/io/region_reader.hpp"
 #include "forward/io/text_input.hpp"
 
 namespace ddafit::inverse {
@@ -35,6 +37,7 @@ class StudyReader : public io::YamlChecks {
   using YamlChecks::YamlChecks;
 
   Study read(const YAML::Node& root, const std::string& dir) const {
+    dir_ = dir;
     if (!root.IsMap()) fail("(top level)", "expected a map with scene, parameters, observations");
     check_keys(root, "", {"scene", "settings", "parameters", "observations", "method", "profile", "ensemble",
                           "hypotheses"});
@@ -75,6 +78,7 @@ class StudyReader : public io::YamlChecks {
   }
 
  private:
+  mutable std::string dir_;  // the study file's folder: relative paths start there
   // Study numbers stay within +-1e12 and sigmas above 1e-12, so that a residual squared
   // (|value| / sigma)^2 <= 4e48 stays far from overflow: 1e308 or a denormal sigma once
   // took the Ceres fit to an error and the run to a segfault.
@@ -180,12 +184,25 @@ class StudyReader : public io::YamlChecks {
   }
 
   Observation observation(const YAML::Node& n, const std::string& path) const {
-    check_keys(n, path, {"point", "quantity", "value", "sigma", "kind", "model_sigma"});
+    check_keys(n, path, {"point", "quantity", "value", "sigma", "kind", "model_sigma", "surface", "from", "to"});
     Observation o;
-    o.point = text(required(n, path, "point", "name the scene's measure point"), join(path, "point"));
     o.quantity = text(required(n, path, "quantity", "name a summary field"), join(path, "quantity"));
+    if (o.is_deposit()) {
+      // The deposit: a surveyed ground surface after the slide, compared over [from, to].
+      if (n["point"]) fail(join(path, "point"), "deposit_rms compares the whole surface; it has no point");
+      const std::string file = text(required(n, path, "surface", "name a CSV of the ground after (x_m,z_m)"),
+                                    join(path, "surface"));
+      o.surface = io::read_polyline_csv(*this, io::resolve_input_path(dir_, file), join(path, "surface"));
+      o.from = bounded(n, path, "from", "give the deposit's first x, m");
+      o.to = bounded(n, path, "to", "give the deposit's last x, m");
+      if (!(o.from < o.to)) fail(join(path, "to"), "is " + fmt(o.to) + ", not above from " + fmt(o.from));
+    } else {
+      for (const char* key : {"surface", "from", "to"})
+        if (n[key]) fail(join(path, key), "only for quantity: deposit_rms");
+      o.point = text(required(n, path, "point", "name the scene's measure point"), join(path, "point"));
+    }
     const auto& qs = summary_quantities();
-    if (std::find(qs.begin(), qs.end(), o.quantity) == qs.end()) {
+    if (!o.is_deposit() && std::find(qs.begin(), qs.end(), o.quantity) == qs.end()) {
       std::string all;
       for (const std::string& q : qs) all += (all.empty() ? "" : ", ") + q;
       fail(join(path, "quantity"), "unknown quantity '" + o.quantity + "'; known: " + all);

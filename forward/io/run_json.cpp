@@ -18,6 +18,8 @@ std::string encode_run(const SimulationResult& r, double seconds) {
   j["message"] = r.summary.message;
   j["simulated_time"] = r.summary.run.simulated_time;
   j["seconds"] = seconds;
+  j["final_surface"] = nlohmann::json::array();
+  for (const Vec2& p : r.summary.final_surface) j["final_surface"].push_back({p.x(), p.y()});
   j["points"] = nlohmann::json::array();
   for (const PointSummary& p : r.summary.points) {
     nlohmann::json point = point_json<nlohmann::json>(p);
@@ -34,6 +36,8 @@ SimulationResult decode_run(const std::string& text, double* seconds) {
   r.summary.message = j.at("message").get<std::string>();
   r.summary.run.simulated_time = j["simulated_time"].is_number() ? j["simulated_time"].get<double>() : 0.0;
   *seconds = j["seconds"].is_number() ? j["seconds"].get<double>() : 0.0;
+  if (j.contains("final_surface"))
+    for (const auto& p : j["final_surface"]) r.summary.final_surface.emplace_back(p.at(0).get<double>(), p.at(1).get<double>());
   for (const auto& p : j.at("points")) {
     PointSummary point;
     point.name = p.at("name").get<std::string>();
