@@ -1,6 +1,6 @@
 #include "forward/run_record.hpp"
 
-#include "forward/analysis/top_surface.hpp"
+#include "forward/top_surface.hpp"
 
 #include <algorithm>
 #include <cmath>

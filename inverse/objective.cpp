@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <limits>
 
-#include "forward/analysis/top_surface.hpp"
+#include "forward/top_surface.hpp"
 
 namespace ddafit::inverse {
 

@@ -1,4 +1,4 @@
-// The deposit observation: the ground surface a run leaves (forward/analysis/top_surface)
+// The deposit observation: the ground surface a run leaves (forward/top_surface)
 // against a surveyed one, as an RMS elevation misfit (issue "Which weakening explains
 // Vajont?"). Geometry checked against hand values; the observation checked by a twin whose
 // surveyed surface is the truth run's own.
@@ -8,7 +8,7 @@
 #include <filesystem>
 #include <fstream>
 
-#include "forward/analysis/top_surface.hpp"
+#include "forward/top_surface.hpp"
 #include "forward/simulation.hpp"
 #include "inverse/forward_call.hpp"
 #include "inverse/inversion.hpp"

@@ -1,4 +1,4 @@
-#include "forward/analysis/top_surface.hpp"
+#include "forward/top_surface.hpp"
 
 #include <algorithm>
 #include <cmath>
