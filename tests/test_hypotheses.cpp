@@ -8,6 +8,7 @@
 #include <fstream>
 
 #include "inverse/forward_call.hpp"
+#include "tests/twin_observations.hpp"
 #include "inverse/hypotheses.hpp"
 
 namespace {
@@ -71,11 +72,7 @@ fs::path hypotheses_study(const std::string& tag) {
                                                                      {"interfaces.clay.critical_distance_ratio", "0.2"},
                                                                      {"interfaces.clay.law", "exponential"}}));
   EXPECT_EQ(truth.summary.status, RunStatus::Completed) << truth.summary.message;
-  std::string obs;
-  for (const PointSummary& p : truth.summary.points)
-    obs += "  - {point: " + p.name + ", quantity: max_total_displacement, value: " +
-           exact_text(p.max_total_displacement) + ", sigma: 0.01}\n" + "  - {point: " + p.name +
-           ", quantity: peak_total_velocity, value: " + exact_text(p.peak_total_velocity) + ", sigma: 0.01}\n";
+  const std::string obs = testing_twin::twin_observations(truth);
   const fs::path path = fresh_dir(tag) / "study.yaml";
   std::ofstream(path) << "scene: " << kScene << "\n"
                       << "settings: {interfaces.clay.critical_distance_ratio: 0.2}\n"

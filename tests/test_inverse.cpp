@@ -12,6 +12,7 @@
 #include "forward/io/scene_reader.hpp"
 #include "inverse/evaluation_cache.hpp"
 #include "inverse/forward_call.hpp"
+#include "tests/twin_observations.hpp"
 #include "inverse/inversion.hpp"
 #include "inverse/objective.hpp"
 #include "inverse/report.hpp"
@@ -47,11 +48,7 @@ fs::path twin_study(const std::string& tag, const std::string& method, int profi
       run_forward(io::read_scene(kScene, {{"interfaces.clay.degradation_percent", exact_text(kTrueDegradation)},
                                           {"interfaces.joint.roughness_angle", exact_text(kTrueRoughness)}}));
   EXPECT_EQ(truth.summary.status, RunStatus::Completed) << truth.summary.message;
-  std::string obs;
-  for (const PointSummary& p : truth.summary.points)
-    obs += "  - {point: " + p.name + ", quantity: max_total_displacement, value: " +
-           exact_text(p.max_total_displacement) + ", sigma: 0.01}\n" + "  - {point: " + p.name +
-           ", quantity: peak_total_velocity, value: " + exact_text(p.peak_total_velocity) + ", sigma: 0.01}\n";
+  const std::string obs = testing_twin::twin_observations(truth);
   const fs::path path = fresh_dir(tag) / "study.yaml";
   std::ofstream(path) << "scene: " << kScene << "\n"
                       << "parameters:\n"
