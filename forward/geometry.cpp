@@ -148,4 +148,14 @@ bool polygons_overlap(const std::vector<Vec2>& a, const std::vector<Vec2>& b, do
   return false;
 }
 
+double polyline_height(const std::vector<Vec2>& line, double x) {
+  if (line.empty()) return std::numeric_limits<double>::quiet_NaN();
+  if (x <= line.front().x()) return line.front().y();
+  if (x >= line.back().x()) return line.back().y();
+  const auto hi = std::upper_bound(line.begin(), line.end(), x, [](double v, const Vec2& p) { return v < p.x(); });
+  const Vec2& a = *(hi - 1);
+  const Vec2& b = *hi;
+  return a.y() + (b.y() - a.y()) * (x - a.x()) / (b.x() - a.x());
+}
+
 }  // namespace ddafit

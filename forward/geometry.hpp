@@ -23,6 +23,10 @@ PolygonMoments polygon_moments(const std::vector<Vec2>& polygon);
 
 double signed_area(const std::vector<Vec2>& polygon);
 
+// z of a polyline (x increasing) at x by linear interpolation, flat beyond its ends; NaN
+// for an empty line (water tables, surveyed surfaces).
+double polyline_height(const std::vector<Vec2>& line, double x);
+
 // Twice the signed area of triangle (a, b, c): > 0 when c lies left of a->b.
 inline double cross(const Vec2& a, const Vec2& b, const Vec2& c) {
   return (b.x() - a.x()) * (c.y() - a.y()) - (b.y() - a.y()) * (c.x() - a.x());

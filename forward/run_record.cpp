@@ -33,7 +33,6 @@ RunRecorder::RunRecorder(const Scene& scene, const SimulationHooks& hooks, Simul
 }
 
 void RunRecorder::record_row(double time, const BlockSystem& s) {
-  result_.summary.final_surface = top_surface(s);
   for (size_t k = 0; k < s.points.size(); ++k) {
     const MaterialPoint& p = s.points[k];
     result_.history.push_back({time, static_cast<int>(k), p.position, p.position - p.initial_position,
@@ -70,6 +69,8 @@ void RunRecorder::record(double time, const BlockSystem& s) {
   }
   const bool at_start = time == 0.0;
   const bool at_output = scene_.output_interval <= 0.0 || time >= next_output_ - end_slack_;
+  // The ground the run leaves, once, at its end (not at every output).
+  if (finished(time)) result_.summary.final_surface = top_surface(s);
   if (at_start || at_output || finished(time)) {
     record_row(time, s);
     if (hooks_.on_output) hooks_.on_output(time, s);

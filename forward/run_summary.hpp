@@ -97,8 +97,9 @@ struct SimulationSummary {
   std::string message;  // the diagnosis when status != Completed
   std::vector<std::string> warnings;  // settings known to degrade results (docs/theory.md)
   std::vector<PointSummary> points;
-  // The top of the blocks at the last output (forward/top_surface.hpp): the ground
-  // surface the run leaves, for a deposit's comparison with a surveyed one.
+  // The top of the blocks at the end of a run that reached its duration (forward/
+  // top_surface.hpp; empty otherwise): the ground surface the run leaves, for a deposit's
+  // comparison with a surveyed one.
   std::vector<Vec2> final_surface;
   RunCounters run;
   StepProfile profile;

@@ -1,5 +1,7 @@
 #include "forward/top_surface.hpp"
 
+#include "forward/geometry.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -31,16 +33,6 @@ std::vector<Vec2> top_surface(const BlockSystem& s, int columns) {
   for (int c = 0; c < columns; ++c)
     if (std::isfinite(top[c])) out.emplace_back(x0 + (c + 0.5) * width, top[c]);
   return out;
-}
-
-double polyline_height(const std::vector<Vec2>& line, double x) {
-  if (line.empty()) return std::numeric_limits<double>::quiet_NaN();
-  if (x <= line.front().x()) return line.front().y();
-  if (x >= line.back().x()) return line.back().y();
-  const auto hi = std::upper_bound(line.begin(), line.end(), x, [](double v, const Vec2& p) { return v < p.x(); });
-  const Vec2& a = *(hi - 1);
-  const Vec2& b = *hi;
-  return a.y() + (b.y() - a.y()) * (x - a.x()) / (b.x() - a.x());
 }
 
 double surface_misfit_rms(const std::vector<Vec2>& surface, const std::vector<Vec2>& reference, double from, double to) {

@@ -15,9 +15,6 @@ inline constexpr int kSurfaceColumns = 400;
 // (a column no block reaches is left out).
 std::vector<Vec2> top_surface(const BlockSystem& system, int columns = kSurfaceColumns);
 
-// z of a polyline at x (x increasing), flat beyond its ends.
-double polyline_height(const std::vector<Vec2>& line, double x);
-
 // Root mean square of (surface - reference) over the surface's columns with x in [from, to];
 // NaN when no column lies there.
 double surface_misfit_rms(const std::vector<Vec2>& surface, const std::vector<Vec2>& reference, double from, double to);

@@ -18,9 +18,6 @@ namespace {
 // Burnham & Anderson's threshold: Delta AIC below it is substantial support for both.
 constexpr double kIndistinguishableAic = 2.0;
 
-bool is_displacement(const std::string& q) { return q.find("displacement") != std::string::npos; }
-bool is_velocity(const std::string& q) { return q.find("velocity") != std::string::npos; }
-
 std::string verdict_of(const HypothesisRanking& r) {
   if (r.fits.empty() || r.fits.front().failed) return "No hypothesis could be fitted: every run failed.";
   if (r.tied.size() > 1) {

@@ -23,6 +23,10 @@ std::string bounding_friction_sentence(const Study& study, const BoundingFrictio
 // The unit of a summary quantity ("m", "m/s", "s").
 const char* quantity_unit(const std::string& quantity);
 
+// Whether an observed quantity is a displacement or a speed (the charts' axes).
+inline bool is_displacement(const std::string& quantity) { return quantity.find("displacement") != std::string::npos; }
+inline bool is_velocity(const std::string& quantity) { return quantity.find("velocity") != std::string::npos; }
+
 // The charts alone (report_plots.cpp): profile.png, fit.png, velocity_distance.png.
 // Returns false with a reason when gnuplot is missing or fails.
 bool plot_report(const std::string& dir, const Study& study, const InversionSummary& summary, std::string& reason);

@@ -12,13 +12,6 @@
 
 namespace ddafit::inverse {
 
-namespace {
-
-bool is_displacement(const std::string& q) { return q.find("displacement") != std::string::npos; }
-bool is_velocity(const std::string& q) { return q.find("velocity") != std::string::npos; }
-
-}  // namespace
-
 bool plot_report(const std::string& dir, const Study& study, const InversionSummary& s, std::string& reason) {
   const std::filesystem::path d(dir);
   const auto path = [&](const char* name) { return (d / name).string(); };

@@ -11,7 +11,6 @@
 #include "forward/common/energy_check.hpp"
 #include "forward/substep/block_stress.hpp"
 #include "forward/substep/integrate.hpp"
-#include "forward/substep/integrate.hpp"
 #include "forward/substep/prepare_contacts.hpp"
 #include "forward/substep/solve_contacts.hpp"
 #include "forward/substep/substep_context.hpp"

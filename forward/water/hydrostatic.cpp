@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "forward/geometry.hpp"
+
 namespace ddafit {
 namespace {
 
@@ -15,48 +17,38 @@ constexpr double kGaussA = 0.5 - 0.28867513459481287, kGaussB = 0.5 + 0.28867513
 // face, so that the depth z_w - y is linear and >= 0 along each piece.
 template <class Piece>
 void for_each_wet_piece(const Water& water, const Vec2& p, const Vec2& q, Piece&& piece) {
-  std::vector<double> cuts{0.0, 1.0};
-  const double dx = q.x() - p.x();
-  if (dx != 0.0)
-    for (const Vec2& t : water.table) {
-      const double s = (t.x() - p.x()) / dx;
-      if (s > 0.0 && s < 1.0) cuts.push_back(s);
-    }
-  std::sort(cuts.begin(), cuts.end());
   const auto depth = [&](double t) {
     const Vec2 x = p + t * (q - p);
     return water_surface(water, x.x()) - x.y();
   };
-  for (size_t k = 0; k + 1 < cuts.size(); ++k) {
-    double t0 = cuts[k], t1 = cuts[k + 1];
-    if (t1 <= t0) continue;
+  // One stretch of the face over which the surface is straight: its wet part.
+  const auto stretch = [&](double t0, double t1) {
+    if (t1 <= t0) return;
     const double d0 = depth(t0), d1 = depth(t1);
-    if (d0 <= 0.0 && d1 <= 0.0) continue;
+    if (d0 <= 0.0 && d1 <= 0.0) return;
     if (d0 < 0.0) t0 += (t1 - t0) * d0 / (d0 - d1);  // enters the water
     if (d1 < 0.0) t1 = t0 + (t1 - t0) * d0 / (d0 - d1);
     piece(t0, t1);
+  };
+  const double dx = q.x() - p.x();
+  if (water.table.empty() || dx == 0.0) {
+    stretch(0.0, 1.0);  // a level surface (the usual reservoir): no cuts, no allocation
+    return;
   }
+  std::vector<double> cuts{0.0, 1.0};
+  for (const Vec2& t : water.table) {
+    const double s = (t.x() - p.x()) / dx;
+    if (s > 0.0 && s < 1.0) cuts.push_back(s);
+  }
+  std::sort(cuts.begin(), cuts.end());
+  for (size_t k = 0; k + 1 < cuts.size(); ++k) stretch(cuts[k], cuts[k + 1]);
 }
 
 }  // namespace
 
 double water_surface(const Water& water, double x) {
-  double z = -INFINITY;
-  const std::vector<Vec2>& t = water.table;
-  if (!t.empty()) {
-    if (x <= t.front().x()) {
-      z = t.front().y();
-    } else if (x >= t.back().x()) {
-      z = t.back().y();
-    } else {
-      const auto hi = std::upper_bound(t.begin(), t.end(), x, [](double v, const Vec2& p) { return v < p.x(); });
-      const Vec2& a = *(hi - 1);
-      const Vec2& b = *hi;
-      z = a.y() + (b.y() - a.y()) * (x - a.x()) / (b.x() - a.x());
-    }
-  }
-  if (water.level) z = std::max(z, *water.level);
-  return z;
+  const double z = water.table.empty() ? -INFINITY : polyline_height(water.table, x);
+  return water.level ? std::max(z, *water.level) : z;
 }
 
 Vec6 water_load(const BlockSystem& s, int b, double gravity, const Vec3& ahead) {
