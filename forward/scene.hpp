@@ -29,12 +29,14 @@ enum class FrictionLaw {
   Bilinear,           // by slip, linear over d_c: seed Eq. 2-3 (the default)
   Exponential,        // by slip, exp(-d / d_c)
   VelocityWeakening,  // by slip speed, 1 / (1 + |v| / v_w): flash heating
+  ThermalPressurization,  // by the pore pressure that frictional heat raises in a shear band
 };
 
-// The law's name in a scene file ("bilinear", "exponential", "velocity_weakening").
+// The law's name in a scene file ("bilinear", "exponential", "velocity_weakening",
+// "thermal_pressurization").
 const char* to_string(FrictionLaw law);
 inline constexpr FrictionLaw kFrictionLaws[] = {FrictionLaw::Bilinear, FrictionLaw::Exponential,
-                                                FrictionLaw::VelocityWeakening};
+                                                FrictionLaw::VelocityWeakening, FrictionLaw::ThermalPressurization};
 
 struct Interface {
   std::string name;
@@ -49,6 +51,13 @@ struct Interface {
   std::optional<double> degradation_percent;
   FrictionLaw law = FrictionLaw::Bilinear;
   double weakening_velocity = 0.1;  // v_w, m/s (velocity_weakening): half the roughness gone at v_w
+  // The shear band of law: thermal_pressurization (forward/contact/laws/thermal_pressurization.hpp).
+  // Defaults: Rice (2006, J. Geophys. Res. 111, B05311), representative of a fault's damaged gouge.
+  double band_thickness = 1.0e-3;          // h, m
+  double heat_capacity = 2.7e6;            // rho c, volumetric, J/m^3/K
+  double pressurization_factor = 1.0e5;    // Lambda, Pa/K: pore pressure rise per kelvin, undrained
+  double thermal_diffusivity = 7.0e-7;     // alpha_th, m^2/s
+  double hydraulic_diffusivity = 4.0e-6;   // alpha_hy, m^2/s
 };
 
 // Water in the slope (forward/water/hydrostatic.hpp; docs/scene-format.md, "Water"): a
@@ -59,6 +68,17 @@ struct Water {
   std::vector<Vec2> table;      // (x, z_w) of a phreatic surface, x increasing, flat beyond its ends
   double density = 1000.0;      // rho_w, kg/m^3
   bool present() const { return level.has_value() || !table.empty(); }
+};
+
+// An earthquake's ground motion (forward/earthquake/ground_motion.hpp; docs/earthquakes.md):
+// the ground's acceleration at evenly spaced times, linear between samples and zero outside
+// the record. ddafit runs in the ground's frame: the fixed blocks stay put and every free
+// block carries the inertial load -m scale a_g(t) at its centroid.
+struct GroundMotion {
+  std::vector<double> time;        // s, strictly increasing, evenly spaced
+  std::vector<Vec2> acceleration;  // m/s^2 in the scene's axes, as read (before `scale`)
+  double scale = 1.0;              // multiplies the record (a study may vary it)
+  bool present() const { return !time.empty(); }
 };
 
 struct BlockInput {
@@ -131,6 +151,7 @@ struct Scene {
   double output_interval = 0.0;  // s between history rows; 0 = every step
   double rest_speed = 0.1;       // m/s; a point slower than this is at rest
   Water water;                   // none unless the scene gives `water:`
+  GroundMotion earthquake;       // none unless the scene gives `earthquake:`
   SimulationOptions options;
 
   // Regions to be cut into blocks (forward/mesh). Meshing appends their blocks after

@@ -170,6 +170,33 @@ void expect(bool ok, const std::string& key, double value, const char* rule,
   if (!ok) errors.push_back({key, "is " + num(value) + "; " + rule});
 }
 
+// A record as the reader makes it: at least two samples, finite, at increasing, even times
+// (docs/earthquakes.md).
+void check_earthquake(const GroundMotion& g, std::vector<SceneError>& errors) {
+  const std::string key = "earthquake.record";
+  expect(non_negative(g.scale), "earthquake.scale", g.scale, "must be >= 0", errors);
+  if (g.time.size() != g.acceleration.size() || g.time.size() < 2) {
+    errors.push_back({key, "needs at least two samples, each a time and an acceleration"});
+    return;
+  }
+  const double first = g.time[1] - g.time[0];
+  for (size_t k = 0; k < g.time.size(); ++k) {
+    const std::string at = key + "[" + std::to_string(k) + "]";
+    if (!std::isfinite(g.time[k]) || !finite(g.acceleration[k])) {
+      errors.push_back({at, "is not finite"});
+      return;
+    }
+    if (k > 0 && !(g.time[k] > g.time[k - 1])) {
+      errors.push_back({at, "its time does not increase"});
+      return;
+    }
+    if (k > 0 && std::abs(g.time[k] - g.time[k - 1] - first) > 1e-3 * first) {
+      errors.push_back({at, "uneven time step: resample the record at an even step"});
+      return;
+    }
+  }
+}
+
 void check_settings(const Scene& scene, std::vector<SceneError>& errors) {
   if (!finite(scene.gravity))
     errors.push_back({"gravity", "is not finite; give two numbers, e.g. [0, -9.81]"});
@@ -185,6 +212,7 @@ void check_settings(const Scene& scene, std::vector<SceneError>& errors) {
     if (!(scene.gravity.x() == 0.0 && scene.gravity.y() < 0.0))
       errors.push_back({"water", "needs gravity along -y (the water surface's z is the scene's y)"});
   }
+  if (scene.earthquake.present()) check_earthquake(scene.earthquake, errors);
   // A run must end and its output must fit: the steps it takes at the largest step and the
   // history rows it writes are bounded (an output interval of 1e-14 s once stalled at 0 %
   // forever, and a step of 1e-300 s ran without end).
@@ -241,6 +269,20 @@ void check_materials_and_interfaces(const Scene& scene, std::vector<SceneError>&
            f.critical_distance_ratio, "must be > 0", errors);
     expect(positive(f.weakening_velocity), key("weakening_velocity"), f.weakening_velocity, "must be > 0 m/s",
            errors);
+    if (f.law == FrictionLaw::ThermalPressurization) {
+      expect(positive(f.band_thickness), key("band_thickness"), f.band_thickness, "must be > 0 m", errors);
+      expect(positive(f.heat_capacity), key("heat_capacity"), f.heat_capacity, "must be > 0 J/m^3/K", errors);
+      expect(non_negative(f.pressurization_factor), key("pressurization_factor"), f.pressurization_factor,
+             "must be >= 0 Pa/K", errors);
+      expect(non_negative(f.thermal_diffusivity), key("thermal_diffusivity"), f.thermal_diffusivity,
+             "must be >= 0 m^2/s", errors);
+      expect(non_negative(f.hydraulic_diffusivity), key("hydraulic_diffusivity"), f.hydraulic_diffusivity,
+             "must be >= 0 m^2/s", errors);
+      if (f.roughness_angle != 0.0)
+        errors.push_back({key(f.degradation_percent ? "degradation_percent" : "roughness_angle"),
+                          "law thermal_pressurization reads no roughness: its strength falls with the shear band's "
+                          "pore pressure; give 0 or leave it out"});
+    }
   }
 }
 
@@ -366,6 +408,7 @@ const char* to_string(FrictionLaw law) {
     case FrictionLaw::Bilinear: return "bilinear";
     case FrictionLaw::Exponential: return "exponential";
     case FrictionLaw::VelocityWeakening: return "velocity_weakening";
+    case FrictionLaw::ThermalPressurization: return "thermal_pressurization";
   }
   return "?";
 }

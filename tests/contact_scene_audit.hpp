@@ -163,7 +163,7 @@ struct RunAudit {
 };
 
 // Hooks that fill `audit` at every output time. All blocks must be convex.
-SimulationHooks audit_hooks(RunAudit& audit, const Vec2& gravity) {
+[[maybe_unused]] SimulationHooks audit_hooks(RunAudit& audit, const Vec2& gravity) {
   SimulationHooks hooks;
   hooks.on_output = [&audit, gravity](double time, const BlockSystem& s) {
     const int n = static_cast<int>(s.blocks.size());

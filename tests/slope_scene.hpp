@@ -30,7 +30,7 @@ struct Crossing {
   double weakening_velocity = 0.1;          // v_w (m/s), velocity_weakening
 };
 
-std::string describe(const Crossing& c, Integrator integrator) {
+[[maybe_unused]] std::string describe(const Crossing& c, Integrator integrator) {
   std::ostringstream out;
   out << name_of(integrator) << ": alpha " << c.slope << ", phi " << c.friction << ", i " << c.roughness;
   if (c.law != FrictionLaw::Bilinear) out << " (" << to_string(c.law) << ")";
@@ -41,7 +41,7 @@ std::string describe(const Crossing& c, Integrator integrator) {
 
 // A straight slope made of fixed blocks `spacing` long (flush: one line, joints across it),
 // the slider on it with its front `front_gap` before a joint.
-Scene crossing_scene(const Crossing& c, Integrator integrator) {
+[[maybe_unused]] Scene crossing_scene(const Crossing& c, Integrator integrator) {
   Scene s = base_scene(kDuration, kStep, kOutput, integrator);
   Interface face;
   face.name = "slope";

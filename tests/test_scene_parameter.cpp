@@ -64,9 +64,17 @@ struct Outcome {
   std::string error;
 };
 
-// What a key needs the scene to say first: v_w is read by the velocity_weakening law only.
+// What a key needs the scene to say first: v_w is read by the velocity_weakening law only,
+// the shear band's numbers by thermal_pressurization (which reads no roughness), and the
+// record's scale needs a record.
 Overrides setup_for(const std::string& key) {
   if (key == "interfaces.clay.weakening_velocity") return {{"interfaces.clay.law", "velocity_weakening"}};
+  for (const char* band : {"band_thickness", "heat_capacity", "pressurization_factor", "thermal_diffusivity",
+                           "hydraulic_diffusivity"})
+    if (key == std::string("interfaces.clay.") + band)
+      return {{"interfaces.clay.law", "thermal_pressurization"}, {"interfaces.clay.degradation_percent", "0"}};
+  if (key == "earthquake.scale")
+    return {{"earthquake.units", "m/s2"}, {"earthquake.record", "[[0, 0, 0], [0.01, 1, 0], [0.02, 0, 0]]"}};
   return {};
 }
 

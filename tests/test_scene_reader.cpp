@@ -110,7 +110,18 @@ TEST(SceneReader, UnknownFrictionLaw) {
   // A misspelt law must not fall back to the default silently: the fit would rank the
   // wrong hypothesis.
   EXPECT_TRUE(FailsWith(with("roughness_angle: 5", "roughness_angle: 5, law: exponentail"), "interfaces.clay.law",
-                        "use bilinear, exponential or velocity_weakening"));
+                        "use bilinear, exponential, velocity_weakening or thermal_pressurization"));
+}
+
+TEST(SceneReader, ShearBandNumbersWithoutTheirLawOrWithRoughness) {
+  // The band of thermal_pressurization is read by that law only, and the law reads no
+  // roughness: either would otherwise be ignored silently.
+  EXPECT_TRUE(FailsWith(with("roughness_angle: 5", "roughness_angle: 5, band_thickness: 0.01"),
+                        "interfaces.clay.band_thickness", "is read only by law: thermal_pressurization"));
+  EXPECT_TRUE(FailsWith(with("roughness_angle: 5", "roughness_angle: 5, law: thermal_pressurization"),
+                        "interfaces.clay.roughness_angle", "reads no roughness"));
+  EXPECT_TRUE(FailsWith(with("roughness_angle: 5", "law: thermal_pressurization, heat_capacity: 0"),
+                        "interfaces.clay.heat_capacity", "must be > 0"));
 }
 
 TEST(SceneReader, WeakeningVelocityWithoutItsLaw) {

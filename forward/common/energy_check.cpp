@@ -28,6 +28,17 @@ double potential_energy(const BlockSystem& s, const Vec2& gravity) {
   return energy + water_potential(s, gravity.norm());
 }
 
+Vec2 mass_moment(const BlockSystem& s) {
+  Vec2 moment = Vec2::Zero();
+  for (int b = 0; b < static_cast<int>(s.blocks.size()); ++b)
+    if (!s.blocks[b].fixed) moment += s.mass(b) * s.blocks[b].centroid;
+  return moment;
+}
+
+void add_load_work(EnergyAudit& audit, const BlockSystem& s, const Vec2& acceleration, const Vec2& before) {
+  audit.load_work -= acceleration.dot(mass_moment(s) - before);
+}
+
 EnergyAudit start_energy_audit(const BlockSystem& s, const Vec2& gravity) {
   double weight = 0.0;
   for (int b = 0; b < static_cast<int>(s.blocks.size()); ++b)
@@ -38,8 +49,9 @@ EnergyAudit start_energy_audit(const BlockSystem& s, const Vec2& gravity) {
 std::string check_energy(const EnergyAudit& audit, const BlockSystem& s, const Vec2& gravity) {
   const double kinetic = kinetic_energy(s);
   const double released = audit.initial_potential - potential_energy(s, gravity);
-  const double budget = audit.initial_kinetic + released;
-  const double scale = audit.initial_kinetic + std::abs(released) + audit.floor + 1e-300;
+  const double budget = audit.initial_kinetic + released + audit.load_work;
+  const double scale =
+      audit.initial_kinetic + std::abs(released) + std::abs(audit.load_work) + audit.floor + 1e-300;
   if (kinetic <= std::max(budget, 0.0) + kEnergyTolerance * scale) return {};
   int fastest = -1;
   double speed = -1.0;
@@ -51,7 +63,7 @@ std::string check_energy(const EnergyAudit& audit, const BlockSystem& s, const V
     }
   }
   std::ostringstream out;
-  out << "kinetic energy " << kinetic << " J/m exceeds what gravity has supplied (" << budget
+  out << "kinetic energy " << kinetic << " J/m exceeds what gravity and the loads have supplied (" << budget
       << " J/m): contacts are creating energy (fastest block '" << s.block_names[fastest] << "' at " << speed
       << " m/s); results from here on would be meaningless. Lower time.step or control.max_displacement_ratio; "
          "with the implicit solver, tighten control.max_penetration_ratio; with the substep solver, raise "

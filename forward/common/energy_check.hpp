@@ -17,10 +17,20 @@ struct EnergyAudit {
   // not count the energy stored in contact springs and strains, which moves blocks by
   // micrometres at rest (a settled stack rises 2 um); the floor covers that.
   double floor = 0.0;
+  // Work done on the free blocks since t = 0 by the ground's inertial load -m a_g (an
+  // earthquake): the runner adds -a_g . (change of sum m x) after each step (add_load_work).
+  double load_work = 0.0;
 };
 
 double kinetic_energy(const BlockSystem& system);   // translation and rotation
 double potential_energy(const BlockSystem& system, const Vec2& gravity);
+
+// sum m x over the free blocks' centroids, kg m per metre of thickness.
+Vec2 mass_moment(const BlockSystem& system);
+
+// Adds the work of a uniform acceleration load -a on every free block over a step that moved
+// the free blocks' mass moment from `before` to the present one.
+void add_load_work(EnergyAudit& audit, const BlockSystem& system, const Vec2& acceleration, const Vec2& before);
 
 EnergyAudit start_energy_audit(const BlockSystem& system, const Vec2& gravity);
 

@@ -40,7 +40,8 @@ inline double critical_distance(const Interface& face, double length) {
 // steep as v_w = 0.05 m/s put the implicit solver 2 % behind RK4 of the law's equation
 // of motion (tests/test_friction_laws.cpp).
 inline FrictionState friction_state(const SlipHistory& h) {
-  return {h.slip + 0.5 * h.last_slip, std::max(2.0 * h.slip_rate - h.previous_slip_rate, 0.0), h.critical_distance};
+  return {h.slip + 0.5 * h.last_slip, std::max(2.0 * h.slip_rate - h.previous_slip_rate, 0.0), h.critical_distance,
+          h.normal_stress, h.excess_pressure};
 }
 inline double friction_coefficient(const Interface& face, const SlipHistory& h) {
   return friction_law(face, friction_state(h));

@@ -76,6 +76,7 @@ struct ContactPoint {
   int owner = -1;        // vertex id of the corner the point sits on
   Vec2 anchor = Vec2::Zero();  // the point at the start of the step, world
   double slip = 0.0;  // |tangential slip| of the last (sub)step while closed, m
+  double normal_load = 0.0;  // N/m, compression carried over the last (sub)step (0 when open)
   bool fresh = true;  // its features did not touch in the last step
 
   // Strength of the contact law (contact_law.hpp): cohesion and tension act on
@@ -122,6 +123,12 @@ struct SlipHistory {
   double friction = 0.0;           // tan(phi) at the predicted slip (contact_law.hpp)
   bool settled = false;            // no further slip changes the friction
   bool changed = true;             // the friction changed in the last update
+  // law: thermal_pressurization (laws/thermal_pressurization.hpp): the face's shear band.
+  double face_length = 0.0;        // l, the overriding block's length along the contact, m
+  double normal_load = 0.0;        // N/m, this (sub)step's, gathered from the points
+  double normal_stress = 0.0;      // sigma_n' = normal load / l over the last (sub)step, Pa
+  double excess_pressure = 0.0;    // Delta p in the band, Pa
+  std::vector<double> band_column; // T and Delta p across the band and the rock beside it
 };
 
 // What the contact stage hands a solver each step.

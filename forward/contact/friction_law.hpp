@@ -6,10 +6,12 @@
 //   bilinear            phi(d) = phi_p - i min(d/d_c, 1)                      seed Eq. 2-3
 //   exponential         mu(d) = mu_r + (mu_p - mu_r) exp(-d/d_c)
 //   velocity_weakening  mu(v) = mu_r + (mu_p - mu_r) / (1 + |v|/v_w)          flash heating
+//   thermal_pressurization  mu = mu_p (1 - Delta p / sigma_n')                 heat in a shear band
 #pragma once
 
 #include "forward/contact/laws/bilinear.hpp"
 #include "forward/contact/laws/exponential.hpp"
+#include "forward/contact/laws/thermal_pressurization.hpp"
 #include "forward/contact/laws/velocity_weakening.hpp"
 
 namespace ddafit {
@@ -21,6 +23,7 @@ inline double friction_law(const Interface& face, const FrictionState& state) {
   switch (face.law) {
     case FrictionLaw::Exponential: return laws::exponential(face, state);
     case FrictionLaw::VelocityWeakening: return laws::velocity_weakening(face, state);
+    case FrictionLaw::ThermalPressurization: return laws::thermal_pressurization(face, state);
     case FrictionLaw::Bilinear: break;
   }
   return laws::bilinear(face, state);
@@ -32,6 +35,7 @@ inline bool friction_law_settled(const Interface& face, const FrictionState& sta
   switch (face.law) {
     case FrictionLaw::Exponential: return laws::exponential_settled(face, state);
     case FrictionLaw::VelocityWeakening: return laws::velocity_weakening_settled(face, state);
+    case FrictionLaw::ThermalPressurization: return false;  // the band cools and drains while it rests
     case FrictionLaw::Bilinear: break;
   }
   return laws::bilinear_settled(face, state);

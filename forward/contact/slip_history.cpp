@@ -1,6 +1,7 @@
 #include "forward/contact/slip_history.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <numeric>
 
 #include "forward/contact/contact_law.hpp"
@@ -35,6 +36,17 @@ void sort_histories(ContactSet& contacts) {
     if (m.history >= 0) m.history = place[m.history];
 }
 
+// Thermal pressurization (laws/thermal_pressurization.hpp): the face's effective normal
+// stress over the (sub)step, the heat of its slip at the friction it slid with, and the
+// band's excess pore pressure after it.
+void heat_shear_band(const BlockSystem& s, SlipHistory& h, double duration) {
+  const Interface& face = s.interfaces[h.interface];
+  h.normal_stress = h.face_length > 0.0 ? h.normal_load / h.face_length : 0.0;
+  const double heat = h.friction * std::max(h.normal_stress, 0.0) * h.increment;
+  h.excess_pressure = laws::advance_column(face, s.shear_bands[h.interface], heat, duration, h.band_column);
+  h.normal_load = 0.0;
+}
+
 }  // namespace
 
 void assign_histories(const BlockSystem& s, ContactSet& contacts) {
@@ -62,6 +74,7 @@ void assign_histories(const BlockSystem& s, ContactSet& contacts) {
         carried[old] = static_cast<int>(histories.size());
         histories.push_back(previous[old]);
         histories.back().increment = 0.0;
+        histories.back().normal_load = 0.0;
       }
       m.history = carried[old];
     } else {
@@ -72,8 +85,9 @@ void assign_histories(const BlockSystem& s, ContactSet& contacts) {
         SlipHistory h;
         h.key = m.face_key;
         h.interface = m.interface;
-        h.critical_distance =
-            critical_distance(s.interfaces[m.interface], block_length_along(s, m.overriding_block, m.tangent));
+        h.face_length = block_length_along(s, m.overriding_block, m.tangent);
+        h.critical_distance = critical_distance(s.interfaces[m.interface], h.face_length);
+        if (!s.shear_bands[m.interface].empty()) laws::start_column(s.shear_bands[m.interface], h.band_column);
         refresh_friction(s, h);
         h.changed = true;
         m.history = static_cast<int>(histories.size());
@@ -93,6 +107,8 @@ void assign_histories(const BlockSystem& s, ContactSet& contacts) {
 void reset_histories(const BlockSystem& s, ContactSet& contacts) {
   for (SlipHistory& h : contacts.histories) {
     h.slip = h.last_slip = h.increment = h.slip_rate = h.previous_slip_rate = 0.0;
+    h.normal_load = h.normal_stress = h.excess_pressure = 0.0;
+    if (!h.band_column.empty()) laws::start_column(s.shear_bands[h.interface], h.band_column);
     h.settled = false;
     refresh_friction(s, h);
   }
@@ -103,9 +119,14 @@ void reset_histories(const BlockSystem& s, ContactSet& contacts) {
 void advance_histories(const BlockSystem& s, ContactSet& contacts, double duration) {
   for (const ContactManifold& m : contacts.manifolds)
     if (m.history >= 0)
-      for (int q = 0; q < m.point_count; ++q) gather_slip(contacts.histories[m.history], m.points[q].slip);
+      for (int q = 0; q < m.point_count; ++q) {
+        SlipHistory& h = contacts.histories[m.history];
+        gather_slip(h, m.points[q].slip);
+        if (!h.band_column.empty()) h.normal_load += m.points[q].normal_load;
+      }
   bool any = false;
   for (SlipHistory& h : contacts.histories) {
+    if (!h.band_column.empty()) heat_shear_band(s, h, duration);
     add_slip(h, duration);
     refresh_friction(s, h);
     any = any || h.changed;

@@ -1,5 +1,7 @@
 #include "forward/io/run_files.hpp"
 
+#include "forward/earthquake/ground_motion.hpp"
+
 #include <fmt/format.h>
 #include <fmt/os.h>
 
@@ -44,11 +46,20 @@ std::string prepare_output_folder(const std::string& out) {
 
 void write_history_csv(const std::string& path, const Scene& scene, const SimulationResult& result) {
   auto out = fmt::output_file(path);
-  out.print("time,point,x,y,ux,uy,vx,vy\n");
+  // In an earthquake the run's positions, displacements and velocities are relative to the
+  // ground (as a Newmark analysis gives them); the absolute ones follow as extra columns.
+  const GroundTrack ground(scene.earthquake);
+  out.print("time,point,x,y,ux,uy,vx,vy{}\n", ground.present() ? ",ux_abs,uy_abs,vx_abs,vy_abs" : "");
   for (const HistoryRow& h : result.history) {
-    out.print("{:.9g},{},{:.12g},{:.12g},{:.9g},{:.9g},{:.9g},{:.9g}\n", h.time, scene.measure[h.point].name,
+    out.print("{:.9g},{},{:.12g},{:.12g},{:.9g},{:.9g},{:.9g},{:.9g}", h.time, scene.measure[h.point].name,
               h.position.x(), h.position.y(), h.displacement.x(), h.displacement.y(), h.velocity.x(),
               h.velocity.y());
+    if (ground.present()) {
+      const GroundState g = ground.at(h.time);
+      const Vec2 u = h.displacement + g.displacement, v = h.velocity + g.velocity;
+      out.print(",{:.9g},{:.9g},{:.9g},{:.9g}", u.x(), u.y(), v.x(), v.y());
+    }
+    out.print("\n");
   }
 }
 

@@ -74,6 +74,23 @@ const Row kRows[] = {
        if (s.interfaces[k].law != FrictionLaw::VelocityWeakening) return "is read only by law: velocity_weakening";
        return s.interfaces[k].weakening_velocity = v, nullptr;
      }},
+#define DDAFIT_BAND_ROW(FIELD)                                                                        \
+  {"interfaces", #FIELD, Entry::Interface, false, [](Scene& s, int k, double v) -> const char* {     \
+     if (s.interfaces[k].law != FrictionLaw::ThermalPressurization)                                  \
+       return "is read only by law: thermal_pressurization";                                          \
+     return s.interfaces[k].FIELD = v, nullptr;                                                       \
+   }}
+    DDAFIT_BAND_ROW(band_thickness),
+    DDAFIT_BAND_ROW(heat_capacity),
+    DDAFIT_BAND_ROW(pressurization_factor),
+    DDAFIT_BAND_ROW(thermal_diffusivity),
+    DDAFIT_BAND_ROW(hydraulic_diffusivity),
+#undef DDAFIT_BAND_ROW
+    {"earthquake", "scale", Entry::None, false,
+     [](Scene& s, int, double v) -> const char* {
+       if (!s.earthquake.present()) return "needs an earthquake: record in the scene";
+       return s.earthquake.scale = v, nullptr;
+     }},
     {"mesh", "block_size", Entry::None, true,
      [](Scene& s, int, double v) -> const char* {
        if (!(v > 0.0)) return "must be in (0, 1e6] m";  // 0 means "unset" only in a file

@@ -6,7 +6,10 @@
 //   time.duration, time.step, time.substeps, output.interval, rest_speed
 //   materials.NAME.{density, young_modulus, poisson_ratio}
 //   interfaces.NAME.{friction_angle, cohesion, tensile_strength, roughness_angle,
-//                    degradation_percent, critical_distance_ratio, weakening_velocity}
+//                    degradation_percent, critical_distance_ratio, weakening_velocity,
+//                    band_thickness, heat_capacity, pressurization_factor, thermal_diffusivity,
+//                    hydraulic_diffusivity}
+//   earthquake.scale
 //   mesh.{block_size, min_area_ratio, min_angle, min_edge_ratio, max_arrangement_edges}
 //   control.NAME, for every number of kControlKeys (switches are settings, not parameters)
 #pragma once

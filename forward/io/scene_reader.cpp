@@ -3,6 +3,7 @@
 #include "forward/io/scene_reader.hpp"
 #include "forward/io/region_reader.hpp"
 #include "forward/io/water_reader.hpp"
+#include "forward/io/earthquake_reader.hpp"
 #include "forward/io/text_input.hpp"
 #include "forward/io/yaml_checks.hpp"
 #include "forward/mesh/region.hpp"
@@ -32,7 +33,7 @@ class Reader : public YamlChecks {
     if (!root.IsMap()) fail("(top level)", "expected a map of scene keys (time, materials, ...)");
     check_keys(root, "", {"gravity", "time", "materials", "interfaces", "blocks", "contacts",
                           "default_interface", "measure", "output", "rest_speed", "control", "mesh",
-                          "regions", "water"});  // "base" is resolved before reading (load_tree)
+                          "regions", "water", "earthquake"});  // "base" is resolved before reading (load_tree)
     Scene s;
     if (const YAML::Node n = root["gravity"]) s.gravity = vec2(n, "gravity");
     const YAML::Node time = required(root, "", "time", "add time: {duration: ..., step: ...}");
@@ -67,6 +68,7 @@ class Reader : public YamlChecks {
     }
     opt_number(root, "", "rest_speed", s.rest_speed);
     if (const YAML::Node n = root["water"]) read_water(*this, n, base_dir_, s);
+    if (const YAML::Node n = root["earthquake"]) read_earthquake(*this, n, base_dir_, s);
     if (const YAML::Node n = root["control"]) read_control(n, s.options);
 
     const std::vector<SceneError> errors = validate_scene(s);
@@ -79,7 +81,7 @@ class Reader : public YamlChecks {
     const std::string name = text(n, key);
     for (FrictionLaw law : kFrictionLaws)
       if (name == to_string(law)) return law;
-    fail(key, "is '" + name + "'; use bilinear, exponential or velocity_weakening");
+    fail(key, "is '" + name + "'; use bilinear, exponential, velocity_weakening or thermal_pressurization");
   }
 
   Integrator integrator(const YAML::Node& n) const {
@@ -108,7 +110,9 @@ class Reader : public YamlChecks {
       const std::string path = "interfaces." + name;
       const YAML::Node f = node[name];
       check_keys(f, path, {"friction_angle", "cohesion", "tensile_strength", "roughness_angle",
-                           "degradation_percent", "critical_distance_ratio", "law", "weakening_velocity"});
+                           "degradation_percent", "critical_distance_ratio", "law", "weakening_velocity",
+                           "band_thickness", "heat_capacity", "pressurization_factor", "thermal_diffusivity",
+                           "hydraulic_diffusivity"});
       Interface in;
       in.name = name;
       in.friction_angle = req_number(f, path, "friction_angle", "give degrees");
@@ -121,6 +125,20 @@ class Reader : public YamlChecks {
       if (f["weakening_velocity"] && in.law != FrictionLaw::VelocityWeakening)
         fail(path + ".weakening_velocity", "is read only by law: velocity_weakening (this interface's law is " +
                                                std::string(to_string(in.law)) + ")");
+      // The shear band of law: thermal_pressurization.
+      const std::pair<const char*, double Interface::*> band[] = {
+          {"band_thickness", &Interface::band_thickness},
+          {"heat_capacity", &Interface::heat_capacity},
+          {"pressurization_factor", &Interface::pressurization_factor},
+          {"thermal_diffusivity", &Interface::thermal_diffusivity},
+          {"hydraulic_diffusivity", &Interface::hydraulic_diffusivity}};
+      for (const auto& [name, field] : band) {
+        if (!f[name]) continue;
+        if (in.law != FrictionLaw::ThermalPressurization)
+          fail(path + "." + name, "is read only by law: thermal_pressurization (this interface's law is " +
+                                      std::string(to_string(in.law)) + ")");
+        in.*field = number(f[name], path + "." + name);
+      }
       if (const YAML::Node n = f["degradation_percent"]) {
         if (f["roughness_angle"])
           fail(path, "give either roughness_angle or degradation_percent, not both");

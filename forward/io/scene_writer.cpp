@@ -84,6 +84,13 @@ std::string scene_to_yaml(const Scene& s) {
           {"critical_distance_ratio", num(f.critical_distance_ratio)}};
       if (f.law != FrictionLaw::Bilinear) fields.emplace_back("law", to_string(f.law));
       if (f.law == FrictionLaw::VelocityWeakening) fields.emplace_back("weakening_velocity", num(f.weakening_velocity));
+      if (f.law == FrictionLaw::ThermalPressurization) {
+        fields.emplace_back("band_thickness", num(f.band_thickness));
+        fields.emplace_back("heat_capacity", num(f.heat_capacity));
+        fields.emplace_back("pressurization_factor", num(f.pressurization_factor));
+        fields.emplace_back("thermal_diffusivity", num(f.thermal_diffusivity));
+        fields.emplace_back("hydraulic_diffusivity", num(f.hydraulic_diffusivity));
+      }
       put_flow_map(out, fields);
     }
     out << EndMap;
@@ -147,6 +154,17 @@ std::string scene_to_yaml(const Scene& s) {
       out << EndSeq;
     }
     out << Key << "density" << Value << num(s.water.density) << EndMap;
+  }
+  if (s.earthquake.present()) {
+    // The record inline in m/s^2, unscaled, so that the file stands alone.
+    const GroundMotion& g = s.earthquake;
+    out << Key << "earthquake" << Value << BeginMap << Key << "units" << Value << "m/s2";
+    out << Key << "scale" << Value << num(g.scale);
+    out << Key << "record" << Value << BeginSeq;
+    for (size_t k = 0; k < g.time.size(); ++k)
+      out << YAML::Flow << BeginSeq << num(g.time[k]) << num(g.acceleration[k].x()) << num(g.acceleration[k].y())
+          << EndSeq;
+    out << EndSeq << EndMap;
   }
 
   // Only options that differ from the defaults, so the file shows what was tuned.

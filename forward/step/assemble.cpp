@@ -25,8 +25,8 @@ void assemble_blocks(const BlockSystem& s, const StepParameters& step, BlockSpar
     auto fb = f.segment<6>(6 * b.unknown);
     fb += (2.0 / dt) * m * b.velocity;
     fb.segment<3>(3) -= b.area * b.stress;
-    fb[0] += rho * b.area * step.gravity.x();
-    fb[1] += rho * b.area * step.gravity.y();
+    fb[0] += rho * b.area * (step.gravity.x() - step.ground_acceleration.x());
+    fb[1] += rho * b.area * (step.gravity.y() - step.ground_acceleration.y());
     // The water's force and moment half a step ahead (hydrostatic.hpp). Not its strain
     // terms: the pressure's own squeeze of a block (p/E ~ 1e-5) is nothing to the slide, and
     // applied to the strain unknowns, which start each run unloaded, it set every wet

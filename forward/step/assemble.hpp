@@ -26,6 +26,9 @@ struct StepParameters {
   // Largest part of a contact's penetration at the start of the step that its spring
   // may push out within the step, m (SimulationOptions::max_pushout_speed x dt).
   double pushout = 1e300;
+  // The ground's mean acceleration over the step (forward/earthquake/ground_motion.hpp): in
+  // the ground's frame every free block carries -m a_g at its centroid.
+  Vec2 ground_acceleration = Vec2::Zero();
 };
 
 // The gap at which a contact's normal spring is unloaded during this step: 0, except for

@@ -9,6 +9,7 @@
 #include "forward/step/control_time_step.hpp"
 #include "forward/common/containment_check.hpp"
 #include "forward/common/energy_check.hpp"
+#include "forward/earthquake/ground_motion.hpp"
 #include "forward/step/new_points.hpp"
 #include "forward/step/implicit_context.hpp"
 #include "forward/step/judge_step.hpp"
@@ -62,16 +63,18 @@ void run_implicit(const Scene& scene, BlockSystem& system, RunRecorder& recorder
     return;
   }
 
-  // The springs and loads of one attempt at a step of length dt.
+  const GroundTrack ground(scene.earthquake);
+  double time = 0.0;
+  // The springs and loads of one attempt at a step of length dt from `time`.
   const auto step_parameters = [&](double dt) {
-    return StepParameters{dt, control.penalty, options.shear_penalty_ratio * control.penalty, scene.gravity,
-                          options.contact_tolerance_ratio * control.max_displacement,
-                          options.max_pushout_speed * dt};
+    StepParameters p{dt, control.penalty, options.shear_penalty_ratio * control.penalty, scene.gravity,
+                     options.contact_tolerance_ratio * control.max_displacement, options.max_pushout_speed * dt};
+    p.ground_acceleration = ground.mean_acceleration(time, time + dt);
+    return p;
   };
   StepProfile& profile = ctx.profile;
   RunCounters& run = ctx.run;
   run.smallest_step = scene.max_step;
-  double time = 0.0;
 
   if (options.settle_passes > 0) {
     // The contacts touching at t = 0 start loaded (forward/step/settle_contacts.hpp).
@@ -82,7 +85,8 @@ void run_implicit(const Scene& scene, BlockSystem& system, RunRecorder& recorder
       problem = detect_contacts(system, ctx.detection, ctx.contacts);
     }
     ScopedTimer timer(profile.settle);
-    const StepParameters step = step_parameters(control.step);
+    StepParameters step = step_parameters(control.step);
+    step.ground_acceleration.setZero();  // before the clock runs: the ground is still
     const bool settled =
         problem.empty() && settle_contacts(ctx, step, kSettleShiftSteps * control.max_displacement, problem);
     if (!problem.empty()) {
@@ -100,7 +104,7 @@ void run_implicit(const Scene& scene, BlockSystem& system, RunRecorder& recorder
   }
 
   recorder.start(system);
-  const EnergyAudit audit = start_energy_audit(system, scene.gravity);
+  EnergyAudit audit = start_energy_audit(system, scene.gravity);
 
   auto fail = [&](RunStatus status, const std::string& why) {
     std::ostringstream out;
@@ -149,7 +153,9 @@ void run_implicit(const Scene& scene, BlockSystem& system, RunRecorder& recorder
 
     {
       ScopedTimer timer(profile.update);
+      const Vec2 moment = ground.present() ? mass_moment(system) : Vec2::Zero();
       update_blocks(ctx, attempt);
+      if (ground.present()) add_load_work(audit, system, ground.mean_acceleration(time, time + attempt), moment);
     }
     time = landing >= 0.0 ? landing : time + attempt;
     measure_overlaps(system, ctx.contacts, time, ctx.worst);

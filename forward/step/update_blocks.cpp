@@ -28,6 +28,7 @@ void update_blocks(ImplicitStepContext& ctx, double dt) {
       ContactPoint& p = m.points[q];
       SpringState& c = p.spring;
       p.slip = 0.0;
+      p.normal_load = c.state == ContactState::Open ? 0.0 : std::max(c.normal_force, 0.0);
       if (c.state == ContactState::Locked) {
         c.shear_offset += c.step_slip;  // the spring keeps its offset
         continue;

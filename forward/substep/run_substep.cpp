@@ -129,12 +129,13 @@ SweepSettings prepare_step(SubstepContext& w, double h) {
   return sweep;
 }
 
-// One substep: integrate velocities, warm start, soft sweep, move, relax sweep, slip.
-void run_one_substep(SubstepContext& w, const SweepSettings& sweep) {
+// One substep: integrate velocities (`gravity` less the ground's acceleration in an
+// earthquake), warm start, soft sweep, move, relax sweep, slip.
+void run_one_substep(SubstepContext& w, const SweepSettings& sweep, const Vec2& gravity) {
   SweepSettings relax = sweep;
   relax.use_bias = false;
   ScopedTimer timer(w.profile->solve);
-  integrate_velocities(w.state, w.scene.gravity, sweep.h, w.start_velocity);
+  integrate_velocities(w.state, gravity, sweep.h, w.start_velocity);
   warm_start(w.contacts.manifolds, w.colours, w.state);
   solve_contacts(w.contacts.manifolds, w.colours, sweep, w.state);
   integrate_positions(w.state, sweep.h, w.start_velocity, w.moves);
@@ -145,7 +146,8 @@ void run_one_substep(SubstepContext& w, const SweepSettings& sweep) {
 
 // A step of length dt on this step's manifolds: substeps, then the blocks move (once,
 // exactly: move_blocks) and each deformable block takes its stress from its contacts
-// (block_stress.hpp).
+// (block_stress.hpp). A measured step from w.time feels the earthquake, each substep the
+// ground's mean acceleration over it; the quiet start's steps, before the clock runs, do not.
 void advance(SubstepContext& w, double dt, bool measured) {
   BlockSystem& s = w.system;
   const int substeps = w.options.substeps;
@@ -154,7 +156,12 @@ void advance(SubstepContext& w, double dt, bool measured) {
     w.state.velocity[b] = s.blocks[b].velocity.head<3>();
     w.state.step_moves[b].setZero();
   }
-  for (int k = 0; k < substeps; ++k) run_one_substep(w, sweep);
+  const bool shaking = measured && w.ground.present();
+  for (int k = 0; k < substeps; ++k) {
+    const double t0 = w.time + k * sweep.h;
+    run_one_substep(w, sweep, shaking ? Vec2(w.scene.gravity - w.ground.mean_acceleration(t0, t0 + sweep.h))
+                                      : w.scene.gravity);
+  }
   {
     ScopedTimer timer(w.profile->solve);
     correct_positions(w.contacts.manifolds, w.correction, w.state);
@@ -248,7 +255,7 @@ double choose_step(SubstepContext& w, double previous) {
     w.reach[b] = block_reach(s, static_cast<int>(b));
     if (w.near[b]) fastest = std::max(fastest, vertex_speed_bound(s.blocks[b], w.reach[b]));
   }
-  const double g = scene.gravity.norm();
+  const double g = scene.gravity.norm() + w.ground.peak_acceleration();
   // (fastest + g dt) dt <= max_move
   const double limit = g > 0.0 ? (-fastest + std::sqrt(fastest * fastest + 4.0 * g * max_move)) / (2.0 * g)
                                : max_move / std::max(fastest, 1e-300);
@@ -261,7 +268,7 @@ double choose_step(SubstepContext& w, double previous) {
 // whose speed chose the step). Gravity's share counted as in choose_step.
 void speculative_reach(SubstepContext& w, double dt) {
   const BlockSystem& s = w.system;
-  const double gravity = w.scene.gravity.norm();
+  const double gravity = w.scene.gravity.norm() + w.ground.peak_acceleration();
   const double max_move = w.max_move;
   for (size_t b = 0; b < s.blocks.size(); ++b) {
     const double travel = s.blocks[b].fixed ? 0.0 : (vertex_speed_bound(s.blocks[b], w.reach[b]) + gravity * dt) * dt;
@@ -314,6 +321,7 @@ void run_substep(const Scene& scene, BlockSystem& s, RunRecorder& recorder, Simu
   for (const Material& m : scene.materials) w.deformable.push_back(!(m.rigid || o.rigid_blocks));
   const double max_move = o.max_displacement_ratio * s.half_model_size;
   w.max_move = max_move;
+  w.ground = GroundTrack(scene.earthquake);
   CollideSettings& settings = w.detection.settings;
   settings.margin = o.search_distance_factor * max_move;
   settings.linear_slop = kSlopRatio * max_move;
@@ -327,7 +335,7 @@ void run_substep(const Scene& scene, BlockSystem& s, RunRecorder& recorder, Simu
     summary.message = "t = 0: " + problem;
     return;
   }
-  const EnergyAudit audit = start_energy_audit(s, scene.gravity);
+  EnergyAudit audit = start_energy_audit(s, scene.gravity);
   recorder.start(s);
   double step = scene.max_step;
   run.smallest_step = scene.max_step;
@@ -354,7 +362,10 @@ void run_substep(const Scene& scene, BlockSystem& s, RunRecorder& recorder, Simu
       summary.message = out.str();
       return;
     }
+    w.time = time;
+    const Vec2 moment = w.ground.present() ? mass_moment(s) : Vec2::Zero();
     advance(w, dt, true);
+    if (w.ground.present()) add_load_work(audit, s, w.ground.mean_acceleration(time, time + dt), moment);
     time = landing >= 0.0 ? landing : time + dt;
     ++run.steps;
     run.smallest_step = std::min(run.smallest_step, dt);

@@ -192,11 +192,13 @@ void advance_slip(const BlockSystem& s, const std::vector<Vec3>& moves, double h
       if (p.impulse.normal <= -0.999 * p.impulse.tension) {
         // Open (or torn at its tensile strength): no slip, and the bond is gone.
         p.slip = 0.0;
+        p.normal_load = 0.0;
         break_bond(p);
         p.impulse.cohesion = p.impulse.tension = 0.0;
         continue;
       }
       p.slip = std::abs(m.tangent.dot(velocity_at(moves[m.block_b], p.rb) - velocity_at(moves[m.block_a], p.ra)));
+      p.normal_load = h > 0.0 ? std::max(p.impulse.normal, 0.0) / h : 0.0;
       if (p.bonded && std::abs(p.impulse.tangent) >= 0.999 * coulomb_cap(m.friction, p.impulse.normal, p.impulse.cohesion)) {
         break_bond(p);  // sliding
         p.impulse.cohesion = p.impulse.tension = 0.0;

@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "forward/block_system.hpp"
+#include "forward/earthquake/ground_motion.hpp"
 #include "forward/contact/contact_types.hpp"
 #include "forward/contact/detect_contacts.hpp"
 #include "forward/contact/overlap.hpp"
@@ -27,6 +28,8 @@ struct SubstepContext {
   StepProfile* profile;  // the quiet start points it at a scratch profile: its time is `settle`'s
   SolverReport& report;
   double max_move = 0.0;  // m, the largest move of a vertex in contact per step
+  GroundTrack ground;     // the earthquake, if any (forward/earthquake/ground_motion.hpp)
+  double time = 0.0;      // s, the start of the step being advanced
 
   ContactDetection detection;
   PositionCorrection correction;

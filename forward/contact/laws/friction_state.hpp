@@ -16,6 +16,8 @@ struct FrictionState {
   double slip = 0.0;               // d: accumulated while the face touches, m (seed Eq. 2)
   double slip_rate = 0.0;          // |v|: the face's slip speed, m/s
   double critical_distance = 0.0;  // d_c: critical_distance_ratio x the overriding block's length, m
+  double normal_stress = 0.0;      // sigma_n', the face's effective normal stress last (sub)step, Pa
+  double excess_pressure = 0.0;    // Delta p, the shear band's pore pressure above ambient, Pa
 };
 
 // mu_p = tan(phi_p) and mu_r = tan(phi_p - i): the peak and residual coefficients.
