@@ -51,7 +51,10 @@ nlohmann::json summary_json(const SimulationSummary& s) {
     point["name"] = p.name;
     points.push_back(point);
   }
-  return {{"points", points}, {"warnings", s.warnings}};
+  // The ground surface the run left (a deposit observation reads it), as [[x, y], ...].
+  nlohmann::json surface = nlohmann::json::array();
+  for (const Vec2& p : s.final_surface) surface.push_back({p.x(), p.y()});
+  return {{"points", points}, {"warnings", s.warnings}, {"final_surface", surface}};
 }
 
 SimulationSummary summary_from_json(const nlohmann::json& j) {
@@ -63,6 +66,8 @@ SimulationSummary summary_from_json(const nlohmann::json& j) {
     s.points.push_back(q);
   }
   s.warnings = j.at("warnings").get<std::vector<std::string>>();
+  if (j.contains("final_surface"))
+    for (const auto& p : j["final_surface"]) s.final_surface.emplace_back(p.at(0).get<double>(), p.at(1).get<double>());
   return s;
 }
 

@@ -80,6 +80,15 @@ Evaluation Objective::score(const std::vector<double>& values, const SimulationS
 
 Evaluation Objective::evaluate(const std::vector<double>& values) { return record(values, nullptr, 0.0); }
 
+std::optional<CachedRun> Objective::usable_cached(const std::string& key) const {
+  std::optional<CachedRun> hit = cache_.find(key);
+  if (!hit || hit->result.summary.status != RunStatus::Completed || !hit->result.summary.final_surface.empty())
+    return hit;
+  for (const Observation& o : study_.observations)
+    if (o.is_deposit()) return std::nullopt;  // run it again: the deposit needs the surface
+  return hit;
+}
+
 Evaluation Objective::record(const std::vector<double>& values, SimulationResult* made, double made_seconds) {
   const std::string key = point_key(study_, values);
   if (const auto it = seen_.find(key); it != seen_.end()) {
@@ -93,7 +102,7 @@ Evaluation Objective::record(const std::vector<double>& values, SimulationResult
 
   Evaluation e;
   std::vector<HistoryRow> history;
-  if (std::optional<CachedRun> hit = cache_.find(key)) {
+  if (std::optional<CachedRun> hit = usable_cached(key)) {
     e = score(values, hit->result.summary);
     e.cached = true;
     e.wall_seconds = hit->wall_seconds;

@@ -94,6 +94,9 @@ class Objective {
   // evaluate() with the forward run already made (`run` non-null) or to be made now.
   Evaluation record(const std::vector<double>& values, SimulationResult* run, double seconds);
   Evaluation score(const std::vector<double>& values, const SimulationSummary& summary) const;
+  // The cached run of `key`, unless it cannot be scored: a completed run kept without its
+  // ground surface (cached before the cache kept it) when an observation reads the deposit.
+  std::optional<CachedRun> usable_cached(const std::string& key) const;
 
   const Study& study_;
   StudyScene scene_;

@@ -76,7 +76,7 @@ std::vector<Evaluation> Objective::evaluate_batch(const std::vector<std::vector<
   std::set<std::string> keys;
   for (size_t k = 0; k < points.size(); ++k) {
     const std::string key = point_key(study_, points[k]);
-    if (seen_.count(key) || !keys.insert(key).second || cache_.find(key)) continue;
+    if (seen_.count(key) || !keys.insert(key).second || usable_cached(key)) continue;
     todo.push_back(k);
   }
   std::vector<std::vector<double>> todo_points;

@@ -310,6 +310,9 @@ TEST(InverseCache, StoresSummariesBitExactlyAndKeysOnExactValues) {
   SimulationResult run;
   run.summary.points.push_back({"A", 1.0 / 3.0, M_PI, std::nextafter(2.0, 3.0), 1e-310, 45.000000000000007, true});
   run.history.push_back({0.5, 0, Vec2(1.0 / 7.0, 2.0), Vec2(3.0, -1.0 / 9.0), Vec2(0.1, 0.2)});
+  // The ground surface a deposit observation reads: a resumed study once scored every cached
+  // run as failed because the cache dropped it.
+  run.summary.final_surface = {Vec2(450.0, 1.0 / 3.0), Vec2(452.5, M_PI * 200.0)};
   {
     EvaluationCache cache((dir / "c.sqlite").string(), "v1", "hash");
     cache.store(point_key(study, {x}), run, 1.5, true);
@@ -325,6 +328,7 @@ TEST(InverseCache, StoresSummariesBitExactlyAndKeysOnExactValues) {
   EXPECT_EQ(a.peak_total_velocity, b.peak_total_velocity);
   EXPECT_EQ(a.duration, b.duration);
   EXPECT_EQ(a.stopped, b.stopped);
+  EXPECT_EQ(hit->result.summary.final_surface, run.summary.final_surface);
   ASSERT_EQ(hit->result.history.size(), 1u);
   EXPECT_EQ(hit->result.history[0].position.x(), 1.0 / 7.0);
   EXPECT_FALSE(reopened.find(point_key(study, {0.3})).has_value());
