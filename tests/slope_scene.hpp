@@ -3,6 +3,7 @@
 // it, everything is in an anonymous namespace.
 #pragma once
 
+#include <functional>
 #include <sstream>
 
 #include "tests/contact_scene_audit.hpp"
@@ -72,6 +73,54 @@ struct Crossing {
   s.blocks.push_back(slider);
   s.measure.push_back({"centre", slope.at(rear + 0.5 * c.length, 0.5 * c.height)});
   return s;
+}
+
+// Distance down a slope at `times` for d'' = accel(d, d') from d = 0, d' = v0, by classical
+// RK4 with 1e-5 s steps; the block sticks where it stops if accel(d, 0) <= 0 holds it.
+[[maybe_unused]] std::vector<double> rk4_slide(const std::function<double(double, double)>& accel, double v0,
+                                               const std::vector<double>& times) {
+  constexpr double h = 1e-5;
+  double t = 0.0, d = 0.0, v = v0;
+  std::vector<double> out;
+  for (const double target : times) {
+    while (t < target - 1e-12) {
+      const double step = std::min(h, target - t);
+      const double k1v = accel(d, v), k1d = v;
+      const double k2v = accel(d + 0.5 * step * k1d, v + 0.5 * step * k1v), k2d = v + 0.5 * step * k1v;
+      const double k3v = accel(d + 0.5 * step * k2d, v + 0.5 * step * k2v), k3d = v + 0.5 * step * k2v;
+      const double k4v = accel(d + step * k3d, v + step * k3v), k4d = v + step * k3v;
+      d += step / 6.0 * (k1d + 2 * k2d + 2 * k3d + k4d);
+      v += step / 6.0 * (k1v + 2 * k2v + 2 * k3v + k4v);
+      t += step;
+      if (v < 0.0 || (v == 0.0 && accel(d, 0.0) <= 0.0)) v = 0.0;
+    }
+    out.push_back(d);
+  }
+  return out;
+}
+
+// A run's slide down `slope` against d_exact(t) (rk4_slide at the run's output times): the
+// worst relative error where the exact distance is at least 1 cm, when it happened, and the
+// exact distance at the end.
+struct SlideError {
+  double worst = 0.0, when = 0.0, final_distance = 0.0;
+};
+[[maybe_unused]] SlideError slide_error(const SimulationResult& r, const Slope& slope,
+                                        const std::function<std::vector<double>(const std::vector<double>&)>& exact_at) {
+  std::vector<double> times, model;
+  for (const HistoryRow& row : r.history) {
+    times.push_back(row.time);
+    model.push_back(row.displacement.dot(slope.along));
+  }
+  const std::vector<double> exact = exact_at(times);
+  SlideError e;
+  if (!exact.empty()) e.final_distance = exact.back();
+  for (size_t k = 0; k < times.size(); ++k) {
+    if (exact[k] < 0.01) continue;
+    const double relative = std::abs(model[k] - exact[k]) / exact[k];
+    if (relative > e.worst) e.worst = relative, e.when = times[k];
+  }
+  return e;
 }
 
 }  // namespace

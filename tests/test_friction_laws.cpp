@@ -33,30 +33,11 @@ double law_coefficient(const Crossing& c, double d, double v) {
   return NAN;
 }
 
-// Distance down the slope at `times`, by classical RK4 with 1e-5 s steps (the law's kink
-// at d_c costs the bilinear case O(h^2) locally: < 1e-9 m here).
+// Distance down the slope at `times` (RK4, slope_scene.hpp; the law's kink at d_c costs
+// the bilinear case O(h^2) locally: < 1e-9 m here).
 std::vector<double> rk4_distance(const Crossing& c, const std::vector<double>& times) {
   const double sa = std::sin(c.slope * kDegree), ca = std::cos(c.slope * kDegree);
-  const auto accel = [&](double d, double v) { return kGravity * (sa - ca * law_coefficient(c, d, v)); };
-  constexpr double h = 1e-5;
-  double t = 0.0, d = 0.0, v = c.speed;
-  std::vector<double> out;
-  for (const double target : times) {
-    while (t < target - 1e-12) {
-      const double step = std::min(h, target - t);
-      const double k1v = accel(d, v), k1d = v;
-      const double k2v = accel(d + 0.5 * step * k1d, v + 0.5 * step * k1v), k2d = v + 0.5 * step * k1v;
-      const double k3v = accel(d + 0.5 * step * k2d, v + 0.5 * step * k2v), k3d = v + 0.5 * step * k2v;
-      const double k4v = accel(d + step * k3d, v + step * k3v), k4d = v + step * k3v;
-      d += step / 6.0 * (k1d + 2 * k2d + 2 * k3d + k4d);
-      v += step / 6.0 * (k1v + 2 * k2v + 2 * k3v + k4v);
-      t += step;
-      // Sticks where it stops, if the friction at rest holds it (it does in the sweep).
-      if (v < 0.0 || (v == 0.0 && accel(d, 0.0) <= 0.0)) v = 0.0;
-    }
-    out.push_back(d);
-  }
-  return out;
+  return rk4_slide([&](double d, double v) { return kGravity * (sa - ca * law_coefficient(c, d, v)); }, c.speed, times);
 }
 
 void expect_law_followed(const Crossing& c, Integrator integrator) {
@@ -66,22 +47,10 @@ void expect_law_followed(const Crossing& c, Integrator integrator) {
   const std::string label = describe(c, integrator) + ", d_c/L " + std::to_string(c.dc_ratio) + ", v_w " +
                             std::to_string(c.weakening_velocity);
   expect_contact_physics(r, audit, integrator, label);
-  const Slope slope(c.slope);
-  std::vector<double> times, model;
-  for (const HistoryRow& row : r.history) {
-    times.push_back(row.time);
-    model.push_back(row.displacement.dot(slope.along));
-  }
-  const std::vector<double> exact = rk4_distance(c, times);
-  double worst = 0.0, when = 0.0;
-  for (size_t k = 0; k < times.size(); ++k) {
-    if (exact[k] < 0.01) continue;
-    const double e = std::abs(model[k] - exact[k]) / exact[k];
-    if (e > worst) worst = e, when = times[k];
-  }
-  ASSERT_FALSE(exact.empty());
-  EXPECT_GT(exact.back(), 0.1) << label << ": the case must slide";
-  EXPECT_LT(worst, kDisplacementTolerance) << label << ": worst at t = " << when << " s";
+  const SlideError e = slide_error(r, Slope(c.slope), [&](const std::vector<double>& t) { return rk4_distance(c, t); });
+  EXPECT_GT(e.final_distance, 0.1) << label << ": the case must slide";
+  EXPECT_LT(e.worst, kDisplacementTolerance) << label << ": worst at t = " << e.when << " s";
+  const double worst = e.worst;
   std::cout << "[measured] " << label << ": displacement error " << worst << "\n";
 }
 

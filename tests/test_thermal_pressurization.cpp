@@ -24,28 +24,12 @@ struct Adiabatic {
   double slider;           // length, m
 };
 
-// Distance down the slope at `times` by RK4 (1e-5 s steps) of the exponential limit.
+// Distance down the slope at `times` by RK4 (slope_scene.hpp) of the exponential limit.
 std::vector<double> rk4_adiabatic(const Adiabatic& a, const std::vector<double>& times) {
   const double sa = std::sin(a.slope * kDegree), ca = std::cos(a.slope * kDegree);
   const double mu_p = std::tan(a.friction * kDegree);
-  const auto accel = [&](double d) { return kG * (sa - ca * mu_p * std::exp(-d / a.length_scale)); };
-  constexpr double h = 1e-5;
-  double t = 0.0, d = 0.0, v = a.speed;
-  std::vector<double> out;
-  for (const double target : times) {
-    while (t < target - 1e-12) {
-      const double step = std::min(h, target - t);
-      const double k1v = accel(d), k1d = v;
-      const double k2v = accel(d + 0.5 * step * k1d), k2d = v + 0.5 * step * k1v;
-      const double k3v = accel(d + 0.5 * step * k2d), k3d = v + 0.5 * step * k2v;
-      const double k4v = accel(d + step * k3d), k4d = v + step * k3v;
-      d += step / 6.0 * (k1d + 2 * k2d + 2 * k3d + k4d);
-      v += step / 6.0 * (k1v + 2 * k2v + 2 * k3v + k4v);
-      t += step;
-    }
-    out.push_back(d);
-  }
-  return out;
+  return rk4_slide([&](double d, double) { return kG * (sa - ca * mu_p * std::exp(-d / a.length_scale)); }, a.speed,
+                   times);
 }
 
 class ThermalPressurization : public ::testing::TestWithParam<Integrator> {};
@@ -76,18 +60,10 @@ TEST_P(ThermalPressurization, WithoutDiffusionABlockOnAnInclineFollowsTheExponen
     const SimulationResult r = simulate(s, audit_hooks(audit, s.gravity));
     const std::string label = describe(c, integrator) + ", L " + std::to_string(a.length_scale) + " m";
     expect_contact_physics(r, audit, integrator, label);
-    const Slope slope(a.slope);
-    std::vector<double> times, model;
-    for (const HistoryRow& row : r.history) {
-      times.push_back(row.time);
-      model.push_back(row.displacement.dot(slope.along));
-    }
-    const std::vector<double> exact = rk4_adiabatic(a, times);
-    double worst = 0.0;
-    for (size_t k = 0; k < times.size(); ++k)
-      if (exact[k] >= 0.01) worst = std::max(worst, std::abs(model[k] - exact[k]) / exact[k]);
-    EXPECT_GT(exact.back(), 4.0 * a.length_scale) << label << ": the band must have weakened";
-    EXPECT_LT(worst, 0.01) << label;
+    const SlideError e = slide_error(r, Slope(a.slope), [&](const std::vector<double>& t) { return rk4_adiabatic(a, t); });
+    EXPECT_GT(e.final_distance, 4.0 * a.length_scale) << label << ": the band must have weakened";
+    EXPECT_LT(e.worst, 0.01) << label << ": worst at t = " << e.when << " s";
+    const double worst = e.worst;
     std::cout << "[measured] " << label << ": displacement error " << worst << " against RK4 of the exponential limit\n";
   }
 }
