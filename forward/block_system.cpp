@@ -35,9 +35,6 @@ double block_length_along(const BlockSystem& system, int b, const Vec2& t) {
 BlockSystem build_block_system(const Scene& scene) {
   BlockSystem s;
   s.interfaces = scene.interfaces;
-  for (const Interface& f : scene.interfaces)
-    s.shear_bands.push_back(f.law == FrictionLaw::ThermalPressurization ? laws::make_diffusion_grid(f, scene.duration)
-                                                                         : laws::DiffusionGrid{});
   s.water = scene.water;
   for (const Material& m : scene.materials) {
     s.elastic.push_back(elastic_matrix(m.young_modulus, m.poisson_ratio, scene.options.plane_strain));

@@ -5,7 +5,6 @@
 #include <string>
 #include <vector>
 
-#include "forward/contact/laws/thermal_pressurization.hpp"
 #include "forward/kinematics.hpp"
 #include "forward/scene.hpp"
 
@@ -42,7 +41,6 @@ struct BlockSystem {
   std::vector<Mat3> elastic;       // per material: C of plane strain or stress
   std::vector<double> density;     // per material
   std::vector<Interface> interfaces;
-  std::vector<laws::DiffusionGrid> shear_bands;  // per interface: its band's grid (thermal_pressurization), else empty
   Water water;  // the pore pressure on the faces (forward/water/hydrostatic.hpp)
   int group_count = 0;
   std::vector<int> group_interface;  // group_count x group_count, -1 = none

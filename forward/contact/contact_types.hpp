@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "forward/contact/laws/thermal_pressurization.hpp"
 #include "forward/kinematics.hpp"
 #include "forward/scene.hpp"
 
@@ -135,6 +136,9 @@ struct SlipHistory {
 struct ContactSet {
   std::vector<ContactManifold> manifolds;  // sorted by piece pair
   std::vector<SlipHistory> histories;      // sorted by key
+  // Per interface, the grid of its shear band's diffusion columns (law: thermal_pressurization),
+  // else empty; set once per run (prepare_shear_bands, slip_history.hpp).
+  std::vector<laws::DiffusionGrid> shear_bands;
 };
 
 }  // namespace ddafit

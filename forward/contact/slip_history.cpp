@@ -39,11 +39,11 @@ void sort_histories(ContactSet& contacts) {
 // Thermal pressurization (laws/thermal_pressurization.hpp): the face's effective normal
 // stress over the (sub)step, the heat of its slip at the friction it slid with, and the
 // band's excess pore pressure after it.
-void heat_shear_band(const BlockSystem& s, SlipHistory& h, double duration) {
+void heat_shear_band(const BlockSystem& s, const ContactSet& contacts, SlipHistory& h, double duration) {
   const Interface& face = s.interfaces[h.interface];
   h.normal_stress = h.face_length > 0.0 ? h.normal_load / h.face_length : 0.0;
   const double heat = h.friction * std::max(h.normal_stress, 0.0) * h.increment;
-  h.excess_pressure = laws::advance_column(face, s.shear_bands[h.interface], heat, duration, h.band_column);
+  h.excess_pressure = laws::advance_column(face, contacts.shear_bands[h.interface], heat, duration, h.band_column);
   h.normal_load = 0.0;
 }
 
@@ -87,7 +87,8 @@ void assign_histories(const BlockSystem& s, ContactSet& contacts) {
         h.interface = m.interface;
         h.face_length = block_length_along(s, m.overriding_block, m.tangent);
         h.critical_distance = critical_distance(s.interfaces[m.interface], h.face_length);
-        if (!s.shear_bands[m.interface].empty()) laws::start_column(s.shear_bands[m.interface], h.band_column);
+        if (m.interface < static_cast<int>(contacts.shear_bands.size()) && !contacts.shear_bands[m.interface].empty())
+          laws::start_column(contacts.shear_bands[m.interface], h.band_column);
         refresh_friction(s, h);
         h.changed = true;
         m.history = static_cast<int>(histories.size());
@@ -104,11 +105,18 @@ void assign_histories(const BlockSystem& s, ContactSet& contacts) {
     if (m.history >= 0) m.friction = histories[m.history].friction;
 }
 
+void prepare_shear_bands(const BlockSystem& s, double duration, ContactSet& contacts) {
+  contacts.shear_bands.clear();
+  for (const Interface& f : s.interfaces)
+    contacts.shear_bands.push_back(f.law == FrictionLaw::ThermalPressurization ? laws::make_diffusion_grid(f, duration)
+                                                                                : laws::DiffusionGrid{});
+}
+
 void reset_histories(const BlockSystem& s, ContactSet& contacts) {
   for (SlipHistory& h : contacts.histories) {
     h.slip = h.last_slip = h.increment = h.slip_rate = h.previous_slip_rate = 0.0;
     h.normal_load = h.normal_stress = h.excess_pressure = 0.0;
-    if (!h.band_column.empty()) laws::start_column(s.shear_bands[h.interface], h.band_column);
+    if (!h.band_column.empty()) laws::start_column(contacts.shear_bands[h.interface], h.band_column);
     h.settled = false;
     refresh_friction(s, h);
   }
@@ -126,7 +134,7 @@ void advance_histories(const BlockSystem& s, ContactSet& contacts, double durati
       }
   bool any = false;
   for (SlipHistory& h : contacts.histories) {
-    if (!h.band_column.empty()) heat_shear_band(s, h, duration);
+    if (!h.band_column.empty()) heat_shear_band(s, contacts, h, duration);
     add_slip(h, duration);
     refresh_friction(s, h);
     any = any || h.changed;

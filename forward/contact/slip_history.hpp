@@ -26,6 +26,9 @@ inline std::uint64_t slip_history_key(int face_vertex, int interface) {
 // histories in use, sorted by key, and sets each manifold's friction coefficient.
 void assign_histories(const BlockSystem& system, ContactSet& contacts);
 
+// The diffusion grid of every thermal_pressurization interface for a run of `duration` s.
+void prepare_shear_bands(const BlockSystem& system, double duration, ContactSet& contacts);
+
 // Forgets every face's slip (the quiet start's settling is not part of the slide).
 void reset_histories(const BlockSystem& system, ContactSet& contacts);
 

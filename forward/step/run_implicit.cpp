@@ -5,6 +5,7 @@
 
 #include "forward/contact/detect_contacts.hpp"
 #include "forward/contact/overlap.hpp"
+#include "forward/contact/slip_history.hpp"
 #include "forward/sparse_system.hpp"
 #include "forward/step/control_time_step.hpp"
 #include "forward/common/containment_check.hpp"
@@ -62,6 +63,7 @@ void run_implicit(const Scene& scene, BlockSystem& system, RunRecorder& recorder
     summary.message = "block '" + bad + "': its polygon could not be split into convex pieces for contact";
     return;
   }
+  prepare_shear_bands(system, scene.duration, ctx.contacts);
 
   const GroundTrack ground(scene.earthquake);
   double time = 0.0;

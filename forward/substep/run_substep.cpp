@@ -310,6 +310,7 @@ void run_substep(const Scene& scene, BlockSystem& s, RunRecorder& recorder, Simu
     summary.message = "block '" + bad + "': its polygon could not be split into convex pieces for contact";
     return;
   }
+  prepare_shear_bands(s, scene.duration, w.contacts);
   const size_t n = s.blocks.size();
   w.start_velocity.assign(n, Vec3::Zero());
   w.moves.assign(n, Vec3::Zero());
