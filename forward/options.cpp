@@ -12,6 +12,7 @@ const char* to_string(Integrator integrator) {
     case Integrator::Implicit: return "implicit";
     case Integrator::Substep: return "substep";
     case Integrator::Auto: return "auto";
+    case Integrator::Sled: return "sled";
   }
   return "?";
 }

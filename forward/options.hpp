@@ -11,6 +11,7 @@ enum class Integrator {
   Implicit,  // Shi's global solve with the open-close iteration: exact on the analytic checks
   Substep,   // velocity-level impulses in substeps: cost proportional to the contacts
   Auto,      // Substep from kAutoSubstepBlocks free blocks up, Implicit below
+  Sled,      // fidelity 0: the free blocks as one flexible sled along the ground (forward/sled/)
 };
 
 // The rule of Integrator::Auto: from this many free blocks the implicit solver's global

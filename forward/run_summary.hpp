@@ -106,9 +106,24 @@ struct SimulationSummary {
   SolverReport solver;
 };
 
+// The sled's own record (time.integrator: sled; forward/sled/sled.hpp): its static friction
+// angle and its distance and speed along the path at every step. Empty for the DDA solvers.
+struct SledPoint {
+  double time = 0.0;      // s
+  double distance = 0.0;  // m along the path
+  double velocity = 0.0;  // m/s
+};
+struct SledRecord {
+  double static_friction_angle = 0.0;  // deg: the basal friction at which the sled is just stable
+  double path_length = 0.0;            // m
+  int slices = 0;
+  std::vector<SledPoint> series;
+};
+
 struct SimulationResult {
   SimulationSummary summary;
   std::vector<HistoryRow> history;
+  SledRecord sled;
 };
 
 // Optional observers of a run. None of them may throw.

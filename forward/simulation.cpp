@@ -10,6 +10,7 @@
 #include "forward/perturb.hpp"
 #include "forward/run_record.hpp"
 #include "forward/step/run_implicit.hpp"
+#include "forward/sled/sled.hpp"
 #include "forward/substep/run_substep.hpp"
 
 #ifdef _OPENMP
@@ -73,6 +74,7 @@ SolverReport choose_solver(const Scene& scene, const BlockSystem& s) {
 // are not used here rather than suggesting a mistake.
 std::vector<std::string> unused_setting_warnings(const SimulationOptions& o, const SolverReport& solver) {
   const Integrator running = solver.integrator;
+  if (running == Integrator::Sled) return {};  // the sled reads no contact setting of either solver
   const SimulationOptions d;
   std::vector<std::string> unused;
   if (running == Integrator::Substep) {
@@ -124,7 +126,9 @@ SimulationResult simulate(const Scene& given, const SimulationHooks& hooks) {
   for (std::string& w : unused_setting_warnings(scene.options, summary.solver))
     summary.warnings.push_back(std::move(w));
   RunRecorder recorder(scene, hooks, result);
-  if (summary.solver.integrator == Integrator::Substep) {
+  if (summary.solver.integrator == Integrator::Sled) {
+    result.sled = run_sled(scene, system, recorder, summary);
+  } else if (summary.solver.integrator == Integrator::Substep) {
     run_substep(scene, system, recorder, summary);
   } else {
     if (std::string w = time_step_warning(scene, system); !w.empty()) summary.warnings.push_back(w);

@@ -65,6 +65,13 @@ struct StableArgs {
 };
 int run_stable(const StableArgs& args);
 
+struct SledArgs {
+  std::string scene;
+  std::string out = "ddafit-sled";
+  std::vector<std::string> sets;
+};
+int run_sled(const SledArgs& args);
+
 struct InvertArgs {
   int jobs = 1;     // forward runs at a time where they are independent (the profile's grid)
   int threads = 0;  // per run (the --threads budget)

@@ -103,6 +103,14 @@ int main(int argc, char** argv) {
   plot->add_option("--estimate", pl.observed.label, "whose estimate the bands are (legend text)");
 
   StableArgs st;
+  SledArgs sl;
+  CLI::App* sled = app.add_subcommand(
+      "sled", "fidelity 0: the free blocks as one flexible sled along the ground, Coulomb friction on its base from "
+              "the scene's interface laws; writes sled.csv, sled.json (static friction angle), sled.png");
+  sled->add_option("scene", sl.scene, "scene file (YAML)")->required();
+  sled->add_option("--out", sl.out, "output folder")->capture_default_str();
+  sled->add_option("--set", sl.sets, "override a scene value, KEY=VALUE (repeatable)");
+
   CLI::App* stable = app.add_subcommand(
       "stable",
       "bisect an interface's friction angle for the stable state: a trial is stable when, over the last "
@@ -254,6 +262,7 @@ int main(int argc, char** argv) {
     if (*verify) return run_verify(ver);
     if (*mesh_cmd) return run_mesh(mesh);
     if (*stable) return run_stable(st);
+    if (*sled) return run_sled(sl);
     if (*bench) return run_bench(be);
     if (*plot) return run_plot(pl);
     if (*invert) return run_invert(inv);

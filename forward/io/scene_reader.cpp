@@ -86,9 +86,9 @@ class Reader : public YamlChecks {
 
   Integrator integrator(const YAML::Node& n) const {
     const std::string name = text(n, "time.integrator");
-    for (Integrator i : {Integrator::Implicit, Integrator::Substep, Integrator::Auto})
+    for (Integrator i : {Integrator::Implicit, Integrator::Substep, Integrator::Auto, Integrator::Sled})
       if (name == to_string(i)) return i;
-    fail("time.integrator", "is '" + name + "'; use implicit, substep or auto");
+    fail("time.integrator", "is '" + name + "'; use implicit, substep, auto or sled");
   }
 
   void read_materials(const YAML::Node& node, Scene& s) const {
