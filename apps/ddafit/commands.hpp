@@ -72,6 +72,20 @@ struct SledArgs {
 };
 int run_sled(const SledArgs& args);
 
+struct AdviseArgs {
+  std::string scene;
+  std::string quantity = "max_lateral_displacement";
+  std::string point;
+  std::vector<double> sizes;  // m; empty: 4, 2 and 1 x the scene's mesh.block_size
+  double tolerance = 0.05;
+  int members = 3;            // realisations per size, for the spread
+  int jobs = 1;
+  int threads = 0;
+  std::string out = "ddafit-advise";
+  std::vector<std::string> sets;
+};
+int run_advise(const AdviseArgs& args);
+
 struct InvertArgs {
   int jobs = 1;     // forward runs at a time where they are independent (the profile's grid)
   int threads = 0;  // per run (the --threads budget)

@@ -111,6 +111,22 @@ int main(int argc, char** argv) {
   sled->add_option("--out", sl.out, "output folder")->capture_default_str();
   sled->add_option("--set", sl.sets, "override a scene value, KEY=VALUE (repeatable)");
 
+  AdviseArgs ad;
+  CLI::App* advise = app.add_subcommand(
+      "advise", "block-size advice: cut the scene's regions at a ladder of block sizes, run each as a small ensemble, "
+                "and name the coarsest size whose answer is within the tolerance of the next finer one");
+  advise->add_option("scene", ad.scene, "scene file (YAML) with regions")->required();
+  advise->add_option("--quantity", ad.quantity, "a point quantity of summary.json")->capture_default_str();
+  advise->add_option("--point", ad.point, "measure point name")->required();
+  advise->add_option("--sizes", ad.sizes, "block sizes, m (default: 4, 2 and 1 x mesh.block_size)")->delimiter(',');
+  advise->add_option("--tolerance", ad.tolerance, "relative change allowed between neighbouring sizes")
+      ->capture_default_str()->check(CLI::Range(1e-6, 1.0));
+  advise->add_option("--ensemble", ad.members, "realisations per size (their spread widens the tolerance)")
+      ->capture_default_str()->check(CLI::Range(1, 64));
+  advise->add_option("--jobs", ad.jobs, "realisations at a time")->capture_default_str()->check(CLI::Range(1, 256));
+  advise->add_option("--out", ad.out, "output folder for advise.json")->capture_default_str();
+  advise->add_option("--set", ad.sets, "override a scene value, KEY=VALUE (repeatable)");
+
   CLI::App* stable = app.add_subcommand(
       "stable",
       "bisect an interface's friction angle for the stable state: a trial is stable when, over the last "
@@ -215,7 +231,7 @@ int main(int argc, char** argv) {
 
   // One thread budget for every command that runs the model (thread_budget.hpp).
   int threads = 0;
-  for (CLI::App* command : {simulate, stable, invert, scan, verify, bench})
+  for (CLI::App* command : {simulate, stable, invert, scan, verify, bench, advise, sled})
     command->add_option("--threads", threads, "threads for the model (OpenMP); default: the core count")
         ->check(CLI::Range(1, 1024));
 
@@ -241,6 +257,7 @@ int main(int argc, char** argv) {
   sc.threads = threads;
   sim.threads = threads;
   inv.threads = threads;
+  ad.threads = threads;
   // Under mpirun every rank runs this; `scan` splits into a manager and workers, and the
   // guard ends MPI on every way out.
   const ddafit::batch::MpiWorld world = ddafit::batch::mpi_start(&argc, &argv);
@@ -263,6 +280,7 @@ int main(int argc, char** argv) {
     if (*mesh_cmd) return run_mesh(mesh);
     if (*stable) return run_stable(st);
     if (*sled) return run_sled(sl);
+    if (*advise) return run_advise(ad);
     if (*bench) return run_bench(be);
     if (*plot) return run_plot(pl);
     if (*invert) return run_invert(inv);
