@@ -51,6 +51,11 @@ StudyScene::StudyScene(const Study& study) {
     return;
   }
   for (size_t k = 0; k < study.parameters.size(); ++k) {
+    const Parameter& p = study.parameters[k];
+    if (p.discrete() && p.levels.front() == kSledLevel && p.levels.size() > 1) {
+      sled_parameter_ = static_cast<int>(k);
+      sled_block_size_ = p.levels[1];
+    }
     try {
       parameters_.emplace_back(base_, study.parameters[k].key, study.scene_path);
     } catch (const io::SceneReadError& e) {
@@ -65,7 +70,15 @@ StudyScene::StudyScene(const Study& study) {
 Scene StudyScene::at(const std::vector<double>& values) const {
   if (!problem_.empty()) throw io::SceneReadError(problem_);
   Scene scene = base_;
-  io::set_parameters(scene, parameters_, values);
+  const bool sled = sled_parameter_ >= 0 && values[sled_parameter_] == kSledLevel;
+  if (!sled) {
+    io::set_parameters(scene, parameters_, values);
+    return scene;
+  }
+  std::vector<double> cut = values;
+  cut[sled_parameter_] = sled_block_size_;
+  io::set_parameters(scene, parameters_, cut);
+  scene.options.integrator = Integrator::Sled;
   return scene;
 }
 

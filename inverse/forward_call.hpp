@@ -49,6 +49,10 @@ class StudyScene {
  private:
   Scene base_;
   std::vector<io::SceneParameter> parameters_;
+  // The parameter whose level `sled` runs the sled (study.hpp, kSledLevel), -1 if none, and
+  // the block size its slices are cut at (the next level).
+  int sled_parameter_ = -1;
+  double sled_block_size_ = 0.0;
   std::string problem_;
   int rejected_parameter_ = -1;
 };

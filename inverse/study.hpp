@@ -26,7 +26,10 @@ struct Parameter {
   double upper = 0.0;
   double start = 0.0;        // first guess, inside [lower, upper]
   double resolution = 0.0;   // > 0: the smallest change that matters; sets steps and stopping
-  std::vector<double> levels;  // non-empty: a discrete parameter (block size), fitted level by level
+  // Non-empty: a discrete parameter (block size), fitted level by level. A block size's first
+  // level may be `sled` (kSledLevel): the study's sled at fidelity 0 (forward/sled/), cut at the
+  // next level's block size for its slices and d_c.
+  std::vector<double> levels;
 
   bool discrete() const { return !levels.empty(); }
 };
@@ -58,6 +61,9 @@ struct Observation {
 };
 
 enum class Optimizer { Nlopt, Ceres };
+
+// The level `sled` of a mesh.block_size parameter (no block size is 0).
+inline constexpr double kSledLevel = 0.0;
 
 struct MethodOptions {
   Optimizer optimizer = Optimizer::Nlopt;

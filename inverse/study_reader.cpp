@@ -139,6 +139,15 @@ class StudyReader : public io::YamlChecks {
       if (levels.size() == 0) fail(join(path, "levels"), "the list is empty; give at least one level");
       std::set<double> seen;
       for (size_t k = 0; k < levels.size(); ++k) {
+        if (levels[k].IsScalar() && levels[k].Scalar() == "sled") {
+          // Fidelity 0 first: the sled needs a cut at the next (numeric) block size.
+          if (q.key != "mesh.block_size" || k != 0 || levels.size() < 2)
+            fail(indexed(join(path, "levels"), k), "sled is the first level of a mesh.block_size parameter, followed "
+                                                   "by block sizes (e.g. [sled, 34.3, 8.2])");
+          q.levels.push_back(kSledLevel);
+          seen.insert(kSledLevel);
+          continue;
+        }
         q.levels.push_back(bounded(levels[k], indexed(join(path, "levels"), k)));
         if (!seen.insert(q.levels.back()).second) fail(indexed(join(path, "levels"), k), "repeats a level");
       }

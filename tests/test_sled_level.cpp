@@ -1,0 +1,72 @@
+// A study's block-size levels may start with the sled (`levels: [sled, 20, 10]`): the first
+// level runs at fidelity 0 on a cut at the next level's block size, the later ones the DDA
+// solvers; `sled` anywhere else is refused naming the entry.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "inverse/forward_call.hpp"
+#include "inverse/study.hpp"
+#include "tests/cli_run.hpp"
+
+namespace ddafit::inverse {
+namespace {
+
+std::string study_text(const std::string& levels) {
+  return "scene: " + std::string(DDAFIT_CASES_DIR) + "/slab/slab.yaml\n"
+         "settings: {time.duration: 6, time.integrator: substep}\n"
+         "parameters:\n"
+         "  - {name: base_loss, key: interfaces.base.degradation_percent, lower: 0, upper: 60, start: 20, resolution: 1}\n"
+         "  - {name: block_size, key: mesh.block_size, levels: " + levels + "}\n"
+         "observations:\n"
+         "  - {point: top, quantity: max_lateral_displacement, value: 30, sigma: 5}\n"
+         "method: {optimizer: nlopt, algorithm: LN_BOBYQA, budget: 4, levels: coarse_to_fine, fine_budget: 3}\n";
+}
+
+std::string write_study(const std::string& tag, const std::string& levels) {
+  return ddafit_test::write_file(tag, "study.yaml", study_text(levels)).string();
+}
+
+TEST(SledLevel, TheFirstLevelRunsTheSledOnTheNextLevelsCut) {
+  const Study study = read_study(write_study("sled_level", "[sled, 20, 10]"));
+  ASSERT_EQ(study.parameters[1].levels.size(), 3u);
+  EXPECT_EQ(study.parameters[1].levels[0], kSledLevel);
+  const StudyScene scene(study);
+  ASSERT_TRUE(scene.problem().empty()) << scene.problem();
+  const Scene sled = scene.at({20.0, kSledLevel});
+  EXPECT_EQ(sled.options.integrator, Integrator::Sled);
+  EXPECT_EQ(sled.mesh.block_size, 20.0);
+  const Scene coarse = scene.at({20.0, 20.0});
+  EXPECT_EQ(coarse.options.integrator, Integrator::Substep);
+  EXPECT_EQ(coarse.blocks.size(), sled.blocks.size()) << "the sled is cut as the next level is";
+  const SimulationResult run = simulate(sled);
+  ASSERT_EQ(run.summary.status, RunStatus::Completed) << run.summary.message;
+  EXPECT_FALSE(run.sled.series.empty());
+}
+
+TEST(SledLevel, SledAnywhereButFirstOrOnAnotherKeyIsRefused) {
+  for (const std::string& levels : {std::string("[20, sled]"), std::string("[sled]")}) {
+    try {
+      read_study(write_study("sled_level_bad", levels));
+      ADD_FAILURE() << "accepted levels " << levels;
+    } catch (const StudyError& e) {
+      EXPECT_NE(std::string(e.what()).find("sled is the first level"), std::string::npos) << e.what();
+    }
+  }
+}
+
+TEST(SledLevel, InvertExploresOnTheSledAndReportsTheFinestLevel) {
+  const std::string path = write_study("sled_level_invert", "[sled, 20]");
+  const std::string out = std::string(DDAFIT_TEST_TMP) + "/sled_level_invert/out";
+  std::filesystem::remove_all(out);
+  const ddafit_test::CommandResult r = ddafit_test::ddafit("invert " + path + " --threads 1 --quiet --out " + out, "sled_level_invert");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const nlohmann::json j = nlohmann::json::parse(ddafit_test::slurp(out + "/report.json"));
+  ASSERT_EQ(j.at("levels").size(), 2u);
+  std::cout << "[measured] slab, levels [sled, 20]: " << j.at("levels").dump().substr(0, 400) << "\n";
+}
+
+}  // namespace
+}  // namespace ddafit::inverse
