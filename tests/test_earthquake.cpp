@@ -241,6 +241,25 @@ TEST(EarthquakeRecord, ACsvAndAnAt2OfTheSameSamplesGiveTheSameRun) {
   EXPECT_EQ(again.earthquake.acceleration, from_at2.earthquake.acceleration);
 }
 
+// An .AT2 pair: the horizontal component along `direction` (normalised), the vertical one
+// along +y, in g; the shorter record ends in stillness.
+TEST(EarthquakeRecord, AnAt2PairActsAlongItsDirectionAndTheVertical) {
+  const std::filesystem::path dir = std::filesystem::path(DDAFIT_TEST_TMP) / "earthquake_pair";
+  std::filesystem::create_directories(dir);
+  const std::string header = "PEER NGA STRONG MOTION DATABASE RECORD\nsynthetic\nACCELERATION TIME SERIES IN UNITS OF G\n";
+  write(dir / "h.AT2", header + "NPTS=     4, DT=   .0100 SEC\n 0.1 0.2 0.3 0.4\n");
+  write(dir / "v.AT2", header + "NPTS=     3, DT=   .0100 SEC\n -0.05 0.05 0.1\n");
+  const Scene s = io::parse_scene(
+      scene_text("earthquake: {record: h.AT2, vertical: v.AT2, direction: [3, 4], scale: 2}\n"), "pair.yaml", dir);
+  ASSERT_EQ(s.earthquake.time.size(), 4u);
+  const double g = 9.80665;
+  EXPECT_NEAR(s.earthquake.acceleration[1].x(), 0.2 * 0.6 * g, 1e-12);
+  EXPECT_NEAR(s.earthquake.acceleration[1].y(), 0.2 * 0.8 * g + 0.05 * g, 1e-12);
+  EXPECT_NEAR(s.earthquake.acceleration[3].y(), 0.4 * 0.8 * g, 1e-12) << "the vertical record has ended";
+  EXPECT_EQ(s.earthquake.scale, 2.0);
+  EXPECT_NEAR(GroundTrack(s.earthquake).at(0.01).acceleration.x(), 2.0 * 0.2 * 0.6 * g, 1e-9) << "scale applies";
+}
+
 // A bad record is refused in one line naming the file's line and the problem.
 TEST(EarthquakeRecord, ABadRecordIsRefusedNamingItsLine) {
   const std::filesystem::path dir = std::filesystem::path(DDAFIT_TEST_TMP) / "earthquake_bad";
