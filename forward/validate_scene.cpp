@@ -186,6 +186,10 @@ void check_earthquake(const GroundMotion& g, std::vector<SceneError>& errors) {
       errors.push_back({at, "is not finite"});
       return;
     }
+    if (g.time[k] < 0.0) {
+      errors.push_back({at, "its time is before the run starts (t = 0)"});
+      return;
+    }
     if (k > 0 && !(g.time[k] > g.time[k - 1])) {
       errors.push_back({at, "its time does not increase"});
       return;

@@ -52,7 +52,7 @@ StudyScene::StudyScene(const Study& study) {
   }
   for (size_t k = 0; k < study.parameters.size(); ++k) {
     const Parameter& p = study.parameters[k];
-    if (p.discrete() && p.levels.front() == kSledLevel && p.levels.size() > 1) {
+    if (p.sled_first && p.levels.size() > 1) {
       sled_parameter_ = static_cast<int>(k);
       sled_block_size_ = p.levels[1];
     }
@@ -185,6 +185,20 @@ void check_study_against_scene(const Study& study) {
                      "].key: the scene rejects it: " + scene.problem());
   std::vector<double> start;
   for (const Parameter& p : study.parameters) start.push_back(p.discrete() ? p.levels.front() : p.start);
+  for (size_t k = 0; k < study.parameters.size(); ++k) {
+    if (!study.parameters[k].sled_first) continue;
+    // The sled has no contact stress history: a thermal-pressurization interface cannot run on it.
+    Scene probe;
+    try {
+      probe = scene.at(start);
+    } catch (const io::SceneReadError&) {
+      break;  // reported below with the entry that caused it
+    }
+    for (const Interface& f : probe.interfaces)
+      if (f.law == FrictionLaw::ThermalPressurization)
+        throw StudyError(study.path + ": parameters[" + std::to_string(k) + "].levels: sled cannot run interface '" +
+                         f.name + "' (law thermal_pressurization needs the DDA solvers); start the levels with a block size");
+  }
   Scene at_start;
   try {
     at_start = scene.at(start);

@@ -26,7 +26,7 @@ ModelSpread measure_model_spread(const Study& study, const ModelSpreadRuns& opti
   const bool wanted = std::any_of(study.observations.begin(), study.observations.end(),
                                   [](const Observation& o) { return o.model_sigma_from_ensemble; });
   if (!wanted) return out;
-  for (const Parameter& p : study.parameters) out.at.push_back(p.discrete() ? p.levels.front() : p.start);
+  for (const Parameter& p : study.parameters) out.at.push_back(p.discrete() ? p.first_model_level() : p.start);
   const int members = study.ensemble;
   std::vector<SimulationSummary> summaries(static_cast<size_t>(members));
   std::vector<int> todo;

@@ -11,7 +11,7 @@ namespace ddafit::inverse {
 
 std::vector<std::vector<double>> profile_points(const Study& study, int parameter, int points) {
   std::vector<double> x;
-  for (const Parameter& p : study.parameters) x.push_back(p.discrete() ? p.levels.front() : p.start);
+  for (const Parameter& p : study.parameters) x.push_back(p.discrete() ? p.first_model_level() : p.start);
   const Parameter& p = study.parameters[parameter];
   std::vector<std::vector<double>> out;
   for (int k = 0; k < points; ++k) {

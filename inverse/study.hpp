@@ -30,8 +30,12 @@ struct Parameter {
   // level may be `sled` (kSledLevel): the study's sled at fidelity 0 (forward/sled/), cut at the
   // next level's block size for its slices and d_c.
   std::vector<double> levels;
+  bool sled_first = false;  // levels[0] is `sled` (written so in the study), not a block size
 
   bool discrete() const { return !levels.empty(); }
+  // The level a single model run stands for (a study's spread, a scan): the first, or the
+  // first block size after `sled`.
+  double first_model_level() const { return sled_first ? levels[1] : levels.front(); }
 };
 
 // How an observation enters the misfit. Equal: ((sim - value)/sigma)^2 always. AtMost and

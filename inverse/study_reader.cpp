@@ -145,6 +145,7 @@ class StudyReader : public io::YamlChecks {
             fail(indexed(join(path, "levels"), k), "sled is the first level of a mesh.block_size parameter, followed "
                                                    "by block sizes (e.g. [sled, 34.3, 8.2])");
           q.levels.push_back(kSledLevel);
+          q.sled_first = true;
           seen.insert(kSledLevel);
           continue;
         }

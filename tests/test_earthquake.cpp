@@ -270,6 +270,7 @@ TEST(EarthquakeRecord, ABadRecordIsRefusedNamingItsLine) {
       {"time,ax,ay\n0,0,0\n0.01,nan,0\n", "line 3: ax and ay must be finite"},
       {"time,ax,ay\n0,0,0\n0.01,0.1\n", "line 3: expected three columns"},
       {"time,ax\n0,0\n0.01,0.1\n", "line 1: expected the header line time,ax,ay"},
+      {"time,ax,ay\n-0.01,0,0\n0,0.1,0\n", "line 2: time -0.01 s is before the run starts"},
   };
   for (const auto& [text, expected] : cases) {
     write(dir / "bad.csv", text);

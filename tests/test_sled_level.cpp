@@ -57,6 +57,35 @@ TEST(SledLevel, SledAnywhereButFirstOrOnAnotherKeyIsRefused) {
   }
 }
 
+TEST(SledLevel, OnlyTheWordSledMakesASledLevel) {
+  // A numeric level 0 of another key is a value, not the sled.
+  const std::string text = study_text("[20, 10]");
+  const std::string zero = text.substr(0, text.find("  - {name: base_loss")) +
+                           "  - {name: base_loss, key: interfaces.base.degradation_percent, levels: [0, 25]}\n"
+                           "  - {name: joint, key: interfaces.joint.roughness_angle, lower: 0, upper: 10, start: 5, resolution: 1}\n" +
+                           text.substr(text.find("observations:"));
+  const Study study = read_study(ddafit_test::write_file("sled_level_zero", "study.yaml", zero).string());
+  EXPECT_FALSE(study.parameters[0].sled_first);
+  const StudyScene scene(study);
+  ASSERT_TRUE(scene.problem().empty()) << scene.problem();
+  EXPECT_EQ(scene.at({0.0, 5.0}).options.integrator, Integrator::Substep);
+}
+
+TEST(SledLevel, AThermalPressurizationInterfaceCannotStartOnTheSled) {
+  std::string text = study_text("[sled, 20]");
+  text.replace(text.find("settings: {"), 11,
+               "settings: {interfaces.base.law: thermal_pressurization, ");
+  text.replace(text.find("  - {name: base_loss"), text.find("  - {name: block_size") - text.find("  - {name: base_loss"),
+               "  - {name: band, key: interfaces.base.band_thickness, lower: 0.001, upper: 0.1, start: 0.01, resolution: 0.001}\n");
+  const Study study = read_study(ddafit_test::write_file("sled_level_tp", "study.yaml", text).string());
+  try {
+    check_study_against_scene(study);
+    ADD_FAILURE() << "a thermal-pressurization study was allowed to start on the sled";
+  } catch (const StudyError& e) {
+    EXPECT_NE(std::string(e.what()).find("sled cannot run interface 'base'"), std::string::npos) << e.what();
+  }
+}
+
 TEST(SledLevel, InvertExploresOnTheSledAndReportsTheFinestLevel) {
   const std::string path = write_study("sled_level_invert", "[sled, 20]");
   const std::string out = std::string(DDAFIT_TEST_TMP) + "/sled_level_invert/out";

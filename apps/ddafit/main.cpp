@@ -231,7 +231,7 @@ int main(int argc, char** argv) {
 
   // One thread budget for every command that runs the model (thread_budget.hpp).
   int threads = 0;
-  for (CLI::App* command : {simulate, stable, invert, scan, verify, bench, advise, sled})
+  for (CLI::App* command : {simulate, stable, invert, scan, verify, bench, advise})
     command->add_option("--threads", threads, "threads for the model (OpenMP); default: the core count")
         ->check(CLI::Range(1, 1024));
 

@@ -63,7 +63,9 @@ std::string check_energy(const EnergyAudit& audit, const BlockSystem& s, const V
     }
   }
   std::ostringstream out;
-  out << "kinetic energy " << kinetic << " J/m exceeds what gravity and the loads have supplied (" << budget
+  // The wording of runs without an earthquake stays as it always was.
+  out << "kinetic energy " << kinetic << " J/m exceeds what gravity "
+      << (audit.load_work != 0.0 ? "and the loads have" : "has") << " supplied (" << budget
       << " J/m): contacts are creating energy (fastest block '" << s.block_names[fastest] << "' at " << speed
       << " m/s); results from here on would be meaningless. Lower time.step or control.max_displacement_ratio; "
          "with the implicit solver, tighten control.max_penetration_ratio; with the substep solver, raise "

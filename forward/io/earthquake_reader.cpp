@@ -49,6 +49,7 @@ bool parse_row(const std::string& row, std::vector<double>& values, std::vector<
 void check_time(const YamlChecks& c, const std::string& key, const std::string& where, const std::vector<double>& times,
                 double t) {
   if (!std::isfinite(t)) c.fail(key, where + "time is not a finite number");
+  if (t < 0.0) c.fail(key, where + "time " + seconds(t) + " s is before the run starts (t = 0)");
   if (times.empty()) return;
   if (!(t > times.back()))
     c.fail(key, where + "time " + seconds(t) + " s does not increase (the line before says " +

@@ -48,7 +48,8 @@ void write_history_csv(const std::string& path, const Scene& scene, const Simula
   auto out = fmt::output_file(path);
   // In an earthquake the run's positions, displacements and velocities are relative to the
   // ground (as a Newmark analysis gives them); the absolute ones follow as extra columns.
-  const GroundTrack ground(scene.earthquake);
+  // (The sled ignores the shaking: no absolute columns for it.)
+  const GroundTrack ground(scene.options.integrator == Integrator::Sled ? GroundMotion{} : scene.earthquake);
   out.print("time,point,x,y,ux,uy,vx,vy{}\n", ground.present() ? ",ux_abs,uy_abs,vx_abs,vy_abs" : "");
   for (const HistoryRow& h : result.history) {
     out.print("{:.9g},{},{:.12g},{:.12g},{:.9g},{:.9g},{:.9g},{:.9g}", h.time, scene.measure[h.point].name,

@@ -157,10 +157,17 @@ void advance(SubstepContext& w, double dt, bool measured) {
     w.state.step_moves[b].setZero();
   }
   const bool shaking = measured && w.ground.present();
+  w.load_work = 0.0;
   for (int k = 0; k < substeps; ++k) {
     const double t0 = w.time + k * sweep.h;
-    run_one_substep(w, sweep, shaking ? Vec2(w.scene.gravity - w.ground.mean_acceleration(t0, t0 + sweep.h))
-                                      : w.scene.gravity);
+    const Vec2 ground = shaking ? w.ground.mean_acceleration(t0, t0 + sweep.h) : Vec2::Zero();
+    run_one_substep(w, sweep, w.scene.gravity - ground);
+    if (!shaking) continue;
+    // The load -m a_g of this substep over this substep's moves (the energy audit).
+    Vec2 moved = Vec2::Zero();
+    for (size_t b = 0; b < s.blocks.size(); ++b)
+      if (w.state.masses[b].moves) moved += s.mass(static_cast<int>(b)) * w.moves[b].head<2>();
+    w.load_work -= ground.dot(moved);
   }
   {
     ScopedTimer timer(w.profile->solve);
@@ -364,9 +371,8 @@ void run_substep(const Scene& scene, BlockSystem& s, RunRecorder& recorder, Simu
       return;
     }
     w.time = time;
-    const Vec2 moment = w.ground.present() ? mass_moment(s) : Vec2::Zero();
     advance(w, dt, true);
-    if (w.ground.present()) add_load_work(audit, s, w.ground.mean_acceleration(time, time + dt), moment);
+    audit.load_work += w.load_work;
     time = landing >= 0.0 ? landing : time + dt;
     ++run.steps;
     run.smallest_step = std::min(run.smallest_step, dt);

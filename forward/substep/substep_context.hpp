@@ -30,6 +30,7 @@ struct SubstepContext {
   double max_move = 0.0;  // m, the largest move of a vertex in contact per step
   GroundTrack ground;     // the earthquake, if any (forward/earthquake/ground_motion.hpp)
   double time = 0.0;      // s, the start of the step being advanced
+  double load_work = 0.0; // J/m: the ground's inertial load's work in the last step, substep by substep
 
   ContactDetection detection;
   PositionCorrection correction;
