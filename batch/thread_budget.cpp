@@ -1,5 +1,9 @@
 #include "batch/thread_budget.hpp"
 
+#include <unistd.h>
+
+#include <cstdlib>
+
 #include <dlfcn.h>
 #include <omp.h>
 
@@ -7,6 +11,14 @@
 #include <thread>
 
 namespace ddafit::batch {
+
+void bound_thread_spinning(char** argv) {
+  if (std::getenv("OMP_WAIT_POLICY") || std::getenv("GOMP_SPINCOUNT")) return;
+  ::setenv("GOMP_SPINCOUNT", "10000", 1);
+  ::execv("/proc/self/exe", argv);
+  // No /proc (or exec refused): run on with libgomp's default spinning.
+}
+
 
 void set_thread_budget(int threads) {
   if (threads <= 0) threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));

@@ -58,6 +58,7 @@ CLI::Validator within(double low, double high) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  ddafit::batch::bound_thread_spinning(argv);  // may re-execute once (thread_budget.hpp)
   using namespace ddafit::app;
   CLI::App app{"ddafit: discontinuous deformation analysis for landslide back-analysis"};
   app.set_version_flag("--version", std::string("ddafit ") + DDAFIT_VERSION);
