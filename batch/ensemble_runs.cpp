@@ -12,6 +12,15 @@
 
 namespace ddafit::batch {
 
+EnsembleRuns ensemble_runs(int members, int jobs, int threads) {
+  EnsembleRuns runs;
+  runs.members = members;
+  runs.jobs = std::max(1, jobs);
+  const int cores = threads > 0 ? threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  runs.threads_per_run = std::max(1, cores / runs.jobs);
+  return runs;
+}
+
 std::vector<SimulationResult> run_ensemble(const Scene& scene, const EnsembleRuns& runs) {
   std::vector<SimulationResult> results(static_cast<size_t>(std::max(runs.members, 0)));
   const auto member = [&](int k) {

@@ -18,6 +18,10 @@ struct EnsembleRuns {
   std::function<void(int realisation, const SimulationResult& run)> on_member;
 };
 
+// `members` realisations `jobs` at a time, the thread budget (`threads`; 0 = the core count)
+// shared out between the jobs.
+EnsembleRuns ensemble_runs(int members, int jobs, int threads);
+
 // Each member's result, realisation k at index k. Members share nothing, so the numbers do
 // not depend on `jobs` (tests/test_ensemble.cpp).
 std::vector<SimulationResult> run_ensemble(const Scene& scene, const EnsembleRuns& runs);

@@ -74,6 +74,10 @@ struct Water {
 // the ground's acceleration at evenly spaced times, linear between samples and zero outside
 // the record. ddafit runs in the ground's frame: the fixed blocks stay put and every free
 // block carries the inertial load -m scale a_g(t) at its centroid.
+// How far an interval of a record may depart from its first and still count as even (relative):
+// a CSV's times are rounded decimals (0.005 s written to 4 places).
+inline constexpr double kEvenRecordStep = 1e-3;
+
 struct GroundMotion {
   std::vector<double> time;        // s, strictly increasing, evenly spaced
   std::vector<Vec2> acceleration;  // m/s^2 in the scene's axes, as read (before `scale`)

@@ -8,14 +8,19 @@
 
 namespace ddafit {
 
-std::vector<Vec2> top_surface(const BlockSystem& s, int columns) {
+std::vector<Vec2> top_surface(const BlockSystem& s, int columns, SurfaceOf of) {
   if (s.vertices.empty() || columns < 1) return {};
+  const auto counted = [&](const Block& b) { return of == SurfaceOf::AllBlocks || b.fixed; };
   double x0 = INFINITY, x1 = -INFINITY;
-  for (const Vec2& v : s.vertices) x0 = std::min(x0, v.x()), x1 = std::max(x1, v.x());
+  for (const Block& b : s.blocks)
+    if (counted(b))
+      for (int k = 0; k < b.vertex_count; ++k)
+        x0 = std::min(x0, s.vertices[b.first_vertex + k].x()), x1 = std::max(x1, s.vertices[b.first_vertex + k].x());
   const double width = (x1 - x0) / columns;
   if (!(width > 0.0)) return {};
   std::vector<double> top(static_cast<size_t>(columns), -INFINITY);
-  for (const Block& b : s.blocks)
+  for (const Block& b : s.blocks) {
+    if (!counted(b)) continue;
     for (int k = 0; k < b.vertex_count; ++k) {
       const Vec2& p = s.vertices[b.first_vertex + k];
       const Vec2& q = s.vertices[b.first_vertex + (k + 1) % b.vertex_count];
@@ -29,6 +34,7 @@ std::vector<Vec2> top_surface(const BlockSystem& s, int columns) {
         top[c] = std::max(top[c], z);
       }
     }
+  }
   std::vector<Vec2> out;
   for (int c = 0; c < columns; ++c)
     if (std::isfinite(top[c])) out.emplace_back(x0 + (c + 0.5) * width, top[c]);

@@ -11,9 +11,14 @@ namespace ddafit {
 
 inline constexpr int kSurfaceColumns = 400;
 
-// (x, z) at the middle of each column: the highest point of any block edge crossing that x
-// (a column no block reaches is left out).
-std::vector<Vec2> top_surface(const BlockSystem& system, int columns = kSurfaceColumns);
+// Which blocks a surface is the top of: all (the ground a run leaves) or the fixed ones (the
+// path the sled follows, forward/sled/sled.hpp).
+enum class SurfaceOf { AllBlocks, FixedBlocks };
+
+// (x, z) at the middle of each column over those blocks' x extent: the highest point of any of
+// their edges crossing that x (a column none reaches is left out).
+std::vector<Vec2> top_surface(const BlockSystem& system, int columns = kSurfaceColumns,
+                              SurfaceOf of = SurfaceOf::AllBlocks);
 
 // Root mean square of (surface - reference) over the surface's columns with x in [from, to];
 // NaN when no column lies there.

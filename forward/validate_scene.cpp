@@ -194,7 +194,7 @@ void check_earthquake(const GroundMotion& g, std::vector<SceneError>& errors) {
       errors.push_back({at, "its time does not increase"});
       return;
     }
-    if (k > 0 && std::abs(g.time[k] - g.time[k - 1] - first) > 1e-3 * first) {
+    if (k > 0 && std::abs(g.time[k] - g.time[k - 1] - first) > kEvenRecordStep * first) {
       errors.push_back({at, "uneven time step: resample the record at an even step"});
       return;
     }

@@ -8,7 +8,6 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
-#include <thread>
 
 #include <nlohmann/json.hpp>
 
@@ -88,12 +87,8 @@ int run_advise(const AdviseArgs& args) {
     sets.push_back(fmt::format("mesh.block_size={}", size));
     Scene scene;
     if (!load_scene(args.scene, sets, scene)) return kExitBadInput;
-    batch::EnsembleRuns runs;
-    runs.members = args.members;
-    runs.jobs = std::max(1, args.jobs);
-    const int cores = args.threads > 0 ? args.threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-    runs.threads_per_run = std::max(1, cores / runs.jobs);
-    const std::vector<SimulationResult> members = batch::run_ensemble(scene, runs);
+    const std::vector<SimulationResult> members =
+        batch::run_ensemble(scene, batch::ensemble_runs(args.members, args.jobs, args.threads));
     if (members.front().summary.status == RunStatus::InvalidScene) {
       std::cerr << args.scene << " (block_size " << size << "): " << members.front().summary.message << "\n";
       return kExitBadInput;

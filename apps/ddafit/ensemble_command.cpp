@@ -7,7 +7,6 @@
 #include <algorithm>
 #include <filesystem>
 #include <iostream>
-#include <thread>
 
 #include "apps/ddafit/commands.hpp"
 #include "apps/ddafit/exit_codes.hpp"
@@ -61,11 +60,7 @@ bool plot_ensemble(const fs::path& dir, const std::vector<SimulationResult>& mem
 
 int run_ensemble_command(const SimulateArgs& args, const Scene& scene, const std::string& label) {
   const fs::path dir(args.out);
-  batch::EnsembleRuns runs;
-  runs.members = args.ensemble;
-  runs.jobs = std::max(1, args.jobs);
-  const int cores = args.threads > 0 ? args.threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-  runs.threads_per_run = std::max(1, cores / runs.jobs);
+  batch::EnsembleRuns runs = batch::ensemble_runs(args.ensemble, args.jobs, args.threads);
   runs.on_member = [&](int k, const SimulationResult& r) {
     if (args.quiet) return;
     std::string line = fmt::format("realisation {:>3}: {}", k, io::status_name(r.summary.status));

@@ -103,7 +103,6 @@ int main(int argc, char** argv) {
       ->check(within(0.0, 1e4));
   plot->add_option("--estimate", pl.observed.label, "whose estimate the bands are (legend text)");
 
-  StableArgs st;
   SledArgs sl;
   CLI::App* sled = app.add_subcommand(
       "sled", "fidelity 0: the free blocks as one flexible sled along the ground, Coulomb friction on its base from "
@@ -128,6 +127,7 @@ int main(int argc, char** argv) {
   advise->add_option("--out", ad.out, "output folder for advise.json")->capture_default_str();
   advise->add_option("--set", ad.sets, "override a scene value, KEY=VALUE (repeatable)");
 
+  StableArgs st;
   CLI::App* stable = app.add_subcommand(
       "stable",
       "bisect an interface's friction angle for the stable state: a trial is stable when, over the last "

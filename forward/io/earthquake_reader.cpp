@@ -13,9 +13,6 @@ namespace {
 
 constexpr double kStandardGravity = 9.80665;  // m/s^2 per g (the records' unit)
 
-// Relative departure of an interval from the record's first that is still "even": the
-// times of a CSV are rounded decimals (0.005 s written to 4 places).
-constexpr double kEvenStepTolerance = 1e-3;
 
 // A time for a message: six significant digits (0.02, not 0.019999999999999997).
 std::string seconds(double t) {
@@ -56,7 +53,7 @@ void check_time(const YamlChecks& c, const std::string& key, const std::string& 
                     seconds(times.back()) + " s)");
   if (times.size() >= 2) {
     const double first = times[1] - times[0], step = t - times.back();
-    if (std::abs(step - first) > kEvenStepTolerance * first)
+    if (std::abs(step - first) > kEvenRecordStep * first)
       c.fail(key, where + "uneven time step " + seconds(step) + " s (the record's first is " +
                       seconds(first) + " s): resample the record at an even step");
   }
@@ -174,7 +171,7 @@ void read_earthquake(const YamlChecks& c, const YAML::Node& node, const std::str
     At2Record vertical;
     if (const YAML::Node v = node["vertical"]) {
       vertical = read_at2(c, resolve_input_path(base_dir, c.text(v, "earthquake.vertical")), "earthquake.vertical");
-      if (std::abs(vertical.step - horizontal.step) > kEvenStepTolerance * horizontal.step)
+      if (std::abs(vertical.step - horizontal.step) > kEvenRecordStep * horizontal.step)
         c.fail("earthquake.vertical", "its DT differs from the horizontal record's; give records at the same step");
     }
     // The shorter component ends in stillness.

@@ -6,11 +6,12 @@
 
 #include "forward/common/displace_block.hpp"
 #include "forward/contact/friction_law.hpp"
+#include "forward/top_surface.hpp"
 
 namespace ddafit {
 namespace {
 
-constexpr int kColumns = 2000;  // points of the path over the fixed blocks' width
+constexpr int kColumns = 2000;  // points of the path over the fixed blocks' width (column middles)
 constexpr int kSlices = 200;    // over the free blocks' width: the mass's distribution along the path
 constexpr double kPi = 3.14159265358979323846;
 
@@ -42,8 +43,12 @@ struct Path {
   }
 };
 
-// Lengths of the vertical line at x inside block b's polygon, and where it is lowest.
-double chord(const BlockSystem& s, int b, double x, double* lowest) {
+// The vertical line at x through block b's polygon: its length inside, and its lowest and
+// highest crossing (length 0 when it misses the block).
+struct Chord {
+  double length = 0.0, lowest = 0.0, highest = 0.0;
+};
+Chord chord(const BlockSystem& s, int b, double x) {
   const Block& block = s.blocks[b];
   std::vector<double> ys;
   for (int k = 0; k < block.vertex_count; ++k) {
@@ -53,30 +58,16 @@ double chord(const BlockSystem& s, int b, double x, double* lowest) {
     ys.push_back(p.y() + (q.y() - p.y()) * (x - p.x()) / (q.x() - p.x()));
   }
   std::sort(ys.begin(), ys.end());
-  double length = 0.0;
-  for (size_t k = 0; k + 1 < ys.size(); k += 2) length += ys[k + 1] - ys[k];
-  if (!ys.empty()) *lowest = ys.front();
-  return length;
+  Chord c;
+  for (size_t k = 0; k + 1 < ys.size(); k += 2) c.length += ys[k + 1] - ys[k];
+  if (!ys.empty()) c.lowest = ys.front(), c.highest = ys.back();
+  return c;
 }
 
-Path fixed_top(const BlockSystem& s, double x0, double x1) {
+// The path: the fixed blocks' top surface (forward/top_surface.hpp) and its arc length.
+Path fixed_top(const BlockSystem& s) {
   Path path;
-  const double width = (x1 - x0) / kColumns;
-  for (int c = 0; c <= kColumns; ++c) {
-    const double x = std::min(x0 + c * width, x1 - 1e-9 * (x1 - x0));
-    double top = -std::numeric_limits<double>::infinity();
-    for (int b = 0; b < static_cast<int>(s.blocks.size()); ++b) {
-      if (!s.blocks[b].fixed) continue;
-      const Block& block = s.blocks[b];
-      for (int k = 0; k < block.vertex_count; ++k) {
-        const Vec2& p = s.vertices[block.first_vertex + k];
-        const Vec2& q = s.vertices[block.first_vertex + (k + 1) % block.vertex_count];
-        if ((p.x() <= x) == (q.x() <= x)) continue;
-        top = std::max(top, p.y() + (q.y() - p.y()) * (x - p.x()) / (q.x() - p.x()));
-      }
-    }
-    if (std::isfinite(top)) path.points.emplace_back(x, top);
-  }
+  path.points = top_surface(s, kColumns, SurfaceOf::FixedBlocks);
   path.arc.assign(path.points.size(), 0.0);
   for (size_t k = 1; k < path.points.size(); ++k) path.arc[k] = path.arc[k - 1] + (path.points[k] - path.points[k - 1]).norm();
   return path;
@@ -99,17 +90,13 @@ struct Sled {
 
 Sled build(const Scene& scene, const BlockSystem& s) {
   Sled sled;
-  double x0 = INFINITY, x1 = -INFINITY, f0 = INFINITY, f1 = -INFINITY;
-  for (int b = 0; b < static_cast<int>(s.blocks.size()); ++b) {
-    const Block& block = s.blocks[b];
-    for (int k = 0; k < block.vertex_count; ++k) {
-      const double x = s.vertices[block.first_vertex + k].x();
-      (block.fixed ? f0 : x0) = std::min(block.fixed ? f0 : x0, x);
-      (block.fixed ? f1 : x1) = std::max(block.fixed ? f1 : x1, x);
-    }
-  }
-  if (!(f1 > f0) || !(x1 > x0)) return sled;
-  sled.path = fixed_top(s, f0, f1);
+  double x0 = INFINITY, x1 = -INFINITY;  // the free blocks' extent: the slices'
+  for (const Block& block : s.blocks)
+    if (!block.fixed)
+      for (int k = 0; k < block.vertex_count; ++k)
+        x0 = std::min(x0, s.vertices[block.first_vertex + k].x()), x1 = std::max(x1, s.vertices[block.first_vertex + k].x());
+  if (!(x1 > x0)) return sled;
+  sled.path = fixed_top(s);
   if (sled.path.points.size() < 2) return sled;
   const double width = (x1 - x0) / kSlices;
   for (int c = 0; c < kSlices; ++c) {
@@ -119,11 +106,10 @@ Sled build(const Scene& scene, const BlockSystem& s) {
     int lowest_block = -1;
     for (int b = 0; b < static_cast<int>(s.blocks.size()); ++b) {
       if (s.blocks[b].fixed) continue;
-      double bottom = INFINITY;
-      const double length = chord(s, b, x, &bottom);
-      if (length <= 0.0) continue;
-      slice.mass += s.density[s.blocks[b].material] * length * width;
-      if (bottom < lowest) lowest = bottom, lowest_block = b;
+      const Chord c = chord(s, b, x);
+      if (c.length <= 0.0) continue;
+      slice.mass += s.density[s.blocks[b].material] * c.length * width;
+      if (c.lowest < lowest) lowest = c.lowest, lowest_block = b;
     }
     if (lowest_block < 0) continue;
     slice.start = sled.path.arc_at(x);
@@ -132,9 +118,8 @@ Sled build(const Scene& scene, const BlockSystem& s) {
     double top = -INFINITY;
     for (int b = 0; b < static_cast<int>(s.blocks.size()); ++b) {
       if (!s.blocks[b].fixed) continue;
-      double bottom = INFINITY;
-      const double length = chord(s, b, x, &bottom);
-      if (length > 0.0 && bottom + length > top) top = bottom + length, below = b;
+      const Chord c = chord(s, b, x);
+      if (c.length > 0.0 && c.highest > top) top = c.highest, below = b;
     }
     slice.interface = below >= 0 ? s.interface_between(lowest_block, below) : -1;
     if (slice.interface < 0) {
