@@ -58,6 +58,8 @@ std::string validate_options(const SimulationOptions& o) {
        "must be in [0, 1e6] Hz (0 = automatic)"},
       {"contact_damping_ratio", o.contact_damping_ratio,
        o.contact_damping_ratio >= 0 && o.contact_damping_ratio <= 1e3, "must be in [0, 1000]"},
+      {"contact_passes", static_cast<double>(o.contact_passes), o.contact_passes >= 1 && o.contact_passes <= 64,
+       "must be a whole number in [1, 64]"},
       {"substeps", static_cast<double>(o.substeps), o.substeps >= 1 && o.substeps <= 1000,
        "must be in [1, 1000]"},
       {"search_distance_factor", o.search_distance_factor,

@@ -87,6 +87,17 @@ struct SimulationOptions {
   // (Box2D v3's soft step); more substeps make stacks stiffer and contacts more accurate.
   int substeps = 4;
 
+  // control.contact_passes: most passes over each manifold's points per sweep, stopping
+  // when a pass changes no impulse by more than 1e-3 of the manifold's largest normal
+  // impulse (forward/substep/solve_contacts.cpp). One pass (model revision 2026-11-25.3 and
+  // before) leaves the coupling of a manifold's normal and friction impulses through the
+  // block's rotation unconverged at an impact: a block landing on a 2:1 slope of friction
+  // 25 deg kept 4.2 mm/s of the slip the landing's friction should have taken, and landings
+  // near the friction angle ran up to 2.4 cm long in 1 s (docs/theory.md §13). With 16 the
+  // landing sweep of tests/test_landing.cpp holds 1e-4 m; 8 missed one near-toppling block
+  // by 2.6e-4 m. Cost: 3 % on a standing wall, 28 % on Vajont section I (docs/performance.md).
+  int contact_passes = 16;
+
   // Soft contact constraint: stiffness as a frequency, Hz, and damping ratio. 0 Hz means
   // automatic: an eighth of the substep rate, Box2D's ratio (Box2D also caps it at 30 Hz
   // for games; at 30 Hz a stack of five 1 m blocks sank 1 cm; at a quarter of the rate a

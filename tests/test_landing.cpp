@@ -5,6 +5,8 @@
 
 #include <cmath>
 #include <tuple>
+#include <utility>
+#include <vector>
 
 #include "forward/simulation.hpp"
 #include "verify/cases.hpp"
@@ -45,22 +47,81 @@ INSTANTIATE_TEST_SUITE_P(Sweep, LevelLanding,
                                             ::testing::Values(1e-4, 1e-3, 1e-2), ::testing::Values(1.0, 2.0),
                                             ::testing::Values(20.0, 35.0)));
 
-// Known defect (docs/speed-accuracy.md, "A block that lands on a slope"): on the 2:1
-// incline (phi 25 deg, no degradation) a slider started 1e-4 m above the slope slides
-// 8.3 mm (substep) and 14.7 mm (implicit) further in 2 s than one started on it, where
-// the landing's friction impulse should cancel what the flight gained (< 0.1 mm apart).
-TEST(SlopeLanding, DISABLED_ASliderDroppedOntoTheSlopeSlidesAsIfPlacedOnIt) {
-  for (const Integrator solver : {Integrator::Implicit, Integrator::Substep}) {
-    verification::InclineSetup setup;
-    Scene placed = verification::incline_scene(setup);
-    placed.options.integrator = solver;
-    Scene dropped = placed;
-    const Vec2 up = Vec2(1.0, 2.0).normalized();
-    for (Vec2& p : dropped.blocks[1].polygon) p += 1e-4 * up;
-    dropped.measure[0].at += 1e-4 * up;
-    const double a = simulate(placed).summary.points[0].max_total_displacement;
-    const double b = simulate(dropped).summary.points[0].max_total_displacement;
-    EXPECT_NEAR(a, b, 1e-4) << to_string(solver);
+// A block dropped a small gap onto a plane inclined at alpha, friction phi: it flies for
+// t_f = sqrt(2 gap / (g cos alpha)) and lands with v_n = g cos(alpha) t_f; the landing's
+// friction impulse mu m v_n takes g sin(alpha) t_f - mu v_n off its slip (perfectly
+// inelastic, Coulomb), leaving exactly what a block placed on the plane has at t_f,
+// max(0, a t_f) with a = g (sin alpha - mu cos alpha). Then it slides on at a (or stays).
+// Blocks that would topple (tan alpha >= w/h) or lift their rear corner at the landing
+// (mu h >= w) are left out: their answer is not this formula.
+struct SlopeDrop {
+  double alpha, phi, gap, width, height;
+};
+
+Scene slope_drop_scene(const SlopeDrop& d, Integrator solver) {
+  Scene s = verification::incline_scene({});
+  s.blocks.clear();
+  s.interfaces[0].friction_angle = d.phi;
+  s.interfaces[0].roughness_angle = 0.0;
+  s.duration = 1.0;
+  const double a = d.alpha * M_PI / 180.0;
+  const Vec2 along(std::cos(a), -std::sin(a)), up(std::sin(a), std::cos(a));
+  s.blocks.push_back(verification::block("plane", {Vec2(0, 0), 40.0 * along, 40.0 * along - 3.0 * up, -3.0 * up}, true));
+  const Vec2 o = 3.0 * along + d.gap * up;
+  s.blocks.push_back(verification::block(
+      "slider", {o, o + d.width * along, o + d.width * along + d.height * up, o + d.height * up}, false));
+  s.measure = {{"c", o + 0.5 * d.width * along + 0.5 * d.height * up}};
+  s.options.integrator = solver;
+  return s;
+}
+
+// Slide along the plane at t = 1 s by the formula above.
+double slope_drop_slide(const SlopeDrop& d) {
+  const double g = 9.81, a = d.alpha * M_PI / 180.0, mu = std::tan(d.phi * M_PI / 180.0);
+  const double tf = std::sqrt(2.0 * d.gap / (g * std::cos(a))), acc = g * (std::sin(a) - mu * std::cos(a));
+  const double rest = 1.0 - tf, flight = 0.5 * g * std::sin(a) * tf * tf;
+  return acc > 0.0 ? flight + acc * tf * rest + 0.5 * acc * rest * rest : flight;
+}
+
+std::vector<SlopeDrop> slope_drops() {
+  std::vector<SlopeDrop> out;
+  for (const double alpha : {15.0, 26.565, 40.0})
+    for (const double dphi : {-8.0, -1.5, -0.3, 2.0})  // from sliding freely to just held
+      for (const double gap : {1e-5, 1e-4, 1e-3})
+        for (const auto& [w, h] : {std::pair{2.0, 1.0}, std::pair{2.23, 2.05}, std::pair{1.0, 1.8}}) {
+          const double phi = alpha + dphi;
+          if (std::tan(alpha * M_PI / 180.0) >= w / h || std::tan(phi * M_PI / 180.0) * h >= w) continue;
+          out.push_back({alpha, phi, gap, w, h});
+        }
+  return out;
+}
+
+// On 2026-11-26 (model revision .1, control.contact_passes 16): worst error 3.3e-6 m over
+// the 96 drops; with one pass per manifold (revision 2026-11-25.3) 51 of them erred by
+// more than 5e-5 m (up to 1.7e-2 m). 5e-5 m keeps a margin of 15 over the measured error.
+TEST(SlopeLanding, ABlockDroppedOntoASlopeSlidesOnAsCoulombSays) {
+  const std::vector<SlopeDrop> drops = slope_drops();
+  ASSERT_GE(drops.size(), 90u);
+  for (const SlopeDrop& d : drops) {
+    const SimulationResult r = simulate(slope_drop_scene(d, Integrator::Substep));
+    ASSERT_EQ(r.summary.status, RunStatus::Completed) << r.summary.message;
+    const double a = d.alpha * M_PI / 180.0;
+    const double slide = Vec2(std::cos(a), -std::sin(a)).dot(r.history.back().displacement);
+    EXPECT_NEAR(slide, slope_drop_slide(d), 5e-5)
+        << "alpha " << d.alpha << " phi " << d.phi << " gap " << d.gap << " block " << d.width << " x " << d.height;
+  }
+}
+
+// Known defect of the implicit solver (docs/speed-accuracy.md, "A block that lands on a
+// slope"): its penalty springs return part of the landing's normal velocity (the 2.23 x
+// 2.05 m block dropped 1e-4 m onto the 2:1 slope rebounds at 1.7 cm/s of its 4.2 cm/s), and
+// 65 of the 96 drops above miss the formula by more than 5e-5 m in 1 s (up to 5.2e-2 m).
+TEST(SlopeLanding, DISABLED_TheImplicitSolverLandsABlockAsCoulombSays) {
+  for (const SlopeDrop& d : slope_drops()) {
+    const SimulationResult r = simulate(slope_drop_scene(d, Integrator::Implicit));
+    ASSERT_EQ(r.summary.status, RunStatus::Completed) << r.summary.message;
+    const double a = d.alpha * M_PI / 180.0;
+    EXPECT_NEAR(Vec2(std::cos(a), -std::sin(a)).dot(r.history.back().displacement), slope_drop_slide(d), 5e-5);
   }
 }
 

@@ -95,6 +95,7 @@ inline constexpr ControlKey kControlKeys[] = {
     {"contact_hertz", &SimulationOptions::contact_hertz},
     {"contact_damping_ratio", &SimulationOptions::contact_damping_ratio},
     {"rigid_blocks", &SimulationOptions::rigid_blocks},
+    {"contact_passes", &SimulationOptions::contact_passes},
 };
 
 }  // namespace ddafit::io

@@ -126,6 +126,7 @@ SweepSettings prepare_step(SubstepContext& w, double h) {
   sweep.softness = make_softness(hertz, o.contact_damping_ratio, h);
   sweep.max_pushout_speed = o.max_pushout_speed;
   sweep.linear_slop = slop;
+  sweep.manifold_passes = o.contact_passes;
   return sweep;
 }
 

@@ -67,13 +67,19 @@ void warm_start(const std::vector<ContactManifold>& manifolds, const std::vector
 
 namespace {
 
-// One manifold of a sweep: the normal impulses with the push-out (or none in the relax
-// sweep), then friction under the Mohr-Coulomb cap.
-void solve_manifold(ContactManifold& m, char& deep, const SweepSettings& settings, double inv_h, SweepState& st) {
+// A manifold's passes stop when no impulse of a pass changed by more than this share of
+// its largest normal impulse (control.contact_passes).
+constexpr double kManifoldPassTolerance = 1e-3;
+
+// One pass over a manifold's points: the normal impulses with the push-out (or none in the
+// relax sweep), then friction under the Mohr-Coulomb cap. Returns the largest change of an
+// impulse in the pass.
+double manifold_pass(ContactManifold& m, char& deep, const SweepSettings& settings, double inv_h, SweepState& st) {
   Vec3& va = st.velocity[m.block_a];
   Vec3& vb = st.velocity[m.block_b];
   const BlockMass& ma = st.masses[m.block_a];
   const BlockMass& mb = st.masses[m.block_b];
+  double largest_change = 0.0;
   for (int q = 0; q < m.point_count; ++q) {
     ContactPoint& p = m.points[q];
     // Normal: the gap now, from the step's start and the blocks' moves since.
@@ -96,7 +102,8 @@ void solve_manifold(ContactManifold& m, char& deep, const SweepSettings& setting
     const double change = -p.impulse.normal_mass * mass_scale * (vn + bias);
     // Contact law: compression only, unless a bond holds tension (tension cut-off).
     const double total = std::max(p.impulse.normal + change, -p.impulse.tension);
-    apply(va, vb, ma, mb, p, (total - p.impulse.normal) * m.normal);
+    const double normal_change = total - p.impulse.normal;
+    apply(va, vb, ma, mb, p, normal_change * m.normal);
     p.impulse.normal = total;
 
     // Friction: the Mohr-Coulomb cap, mu N (seed Eq. 2-3 for mu) plus cohesion while bonded.
@@ -104,7 +111,23 @@ void solve_manifold(ContactManifold& m, char& deep, const SweepSettings& setting
     const double vt = m.tangent.dot(velocity_at(vb, p.rb) - velocity_at(va, p.ra));
     const double tangent = std::clamp(p.impulse.tangent - p.impulse.tangent_mass * vt, -cap, cap);
     apply(va, vb, ma, mb, p, (tangent - p.impulse.tangent) * m.tangent);
+    largest_change = std::max({largest_change, std::abs(normal_change), std::abs(tangent - p.impulse.tangent)});
     p.impulse.tangent = tangent;
+  }
+  return largest_change;
+}
+
+// One manifold of a sweep: passes over its points until they agree. The friction impulse
+// at a point below a block's centre turns the block, which moves the normal velocity at
+// both points; one pass leaves that coupling unconverged where an impact's friction should
+// nearly stop the slip (a landing near the friction angle). Local passes are Gauss-Seidel
+// on this manifold alone: the fixed point is the sweep's own, reached in fewer sweeps.
+void solve_manifold(ContactManifold& m, char& deep, const SweepSettings& settings, double inv_h, SweepState& st) {
+  for (int pass = 0; pass < settings.manifold_passes; ++pass) {
+    const double change = manifold_pass(m, deep, settings, inv_h, st);
+    double scale = 0.0;
+    for (int q = 0; q < m.point_count; ++q) scale = std::max(scale, std::abs(m.points[q].impulse.normal));
+    if (change <= kManifoldPassTolerance * scale) break;
   }
 }
 

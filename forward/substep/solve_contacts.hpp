@@ -28,6 +28,7 @@ struct SweepSettings {
   double max_pushout_speed = 0.0;  // m/s: an overlap is pushed out no faster than this
   double linear_slop = 0.0;        // m: overlap tolerated without push-out (stops jitter)
   bool use_bias = true;            // false in the relax sweep
+  int manifold_passes = 1;         // most passes over a manifold's points per sweep (control.contact_passes)
 };
 
 // The blocks' rigid-body velocities (vx, vy, w) that the sweeps change, and their moves
