@@ -1,5 +1,8 @@
 #include "inverse/report.hpp"
 
+#include "forward/io/html_report.hpp"
+#include "forward/model_revision.hpp"
+
 #include <fmt/format.h>
 #include <fmt/os.h>
 
@@ -107,6 +110,7 @@ json report_json(const Study& study, const InversionSummary& s) {
                                  {"delta_chi2_4", range_json(f.delta4_observations)}};
     }
   }
+  bf["sentence"] = bounding_friction_sentence(study, f);
   j["bounding_friction"] = bf;
   const CovarianceReport& c = s.covariance;
   json cj = {{"computed", c.computed}, {"warnings", c.warnings}, {"condition_number", c.condition_number}};
@@ -240,14 +244,22 @@ std::vector<std::string> write_report(const std::string& dir, const Study& given
     out << report_json(study, summary).dump(2) << "\n";
     if (!out) throw std::runtime_error(dir + ": cannot write report.json");
   }
+  const std::string text = markdown(study, summary);
   {
     std::ofstream out(d / "report.md");
-    out << markdown(study, summary);
+    out << text;
     if (!out) throw std::runtime_error(dir + ": cannot write report.md");
   }
   std::vector<std::string> notes;
   std::string reason;
   if (!plot_report(dir, study, summary, reason)) notes.push_back("charts not drawn: " + reason);
+  // report.html after the charts, which it embeds.
+  io::HtmlReport page;
+  page.title = "Back-analysis: " + study.path;
+  page.headline = bounding_friction_sentence(study, summary.friction);
+  page.markdown = text;
+  page.settings = {{"study", study.path}, {"model revision", kModelRevision}};
+  io::write_html_report(dir, page);
   return notes;
 }
 

@@ -6,6 +6,8 @@
 #include <filesystem>
 
 #include "forward/io/gnuplot.hpp"
+#include "forward/io/html_report.hpp"
+#include "forward/model_revision.hpp"
 
 namespace ddafit::app {
 
@@ -136,6 +138,47 @@ bool plot_history(const std::string& dir, const Scene& scene, const std::string&
     gp.print("{}", lateral);
   }
   return io::run_gnuplot(script, "the data files", reason);
+}
+
+}  // namespace ddafit::app
+
+namespace ddafit::app {
+
+void write_run_report(const std::string& dir, const std::string& label, const SimulationResult& result) {
+  const SimulationSummary& s = result.summary;
+  io::HtmlReport page;
+  page.title = "Run: " + label;
+  if (s.points.empty()) {
+    page.headline = fmt::format("The run completed {:.2f} s; the scene has no measure point.", s.run.simulated_time);
+  } else {
+    const PointSummary& p = s.points.front();
+    page.headline = fmt::format(
+        "Point {} ran {:.1f} m ({:.1f} m laterally) at up to {:.2f} m/s in {:.2f} s simulated; {}.", p.name,
+        p.max_total_displacement, p.max_lateral_displacement, p.peak_total_velocity, s.run.simulated_time,
+        p.stopped ? fmt::format("it came to rest by {:.2f} s", p.duration) : std::string("it was still moving at the end"));
+  }
+  std::string md = "## Measure points\n\n| point | max lateral displacement (m) | max total displacement (m) | peak "
+                   "lateral speed (m/s) | peak speed (m/s) | moving until (s) | at rest at the end |\n"
+                   "|---|---|---|---|---|---|---|\n";
+  for (const PointSummary& p : s.points)
+    md += fmt::format("| {} | {:.4g} | {:.4g} | {:.4g} | {:.4g} | {:.3g} | {} |\n", p.name, p.max_lateral_displacement,
+                      p.max_total_displacement, p.peak_lateral_velocity, p.peak_total_velocity, p.duration,
+                      p.stopped ? "yes" : "no");
+  if (!s.warnings.empty()) {
+    md += "\n## Warnings\n\n";
+    for (const std::string& w : s.warnings) md += "- " + w + "\n";
+  }
+  md += "\n## Charts\n\n![configuration](configuration.png)\n![velocity against distance](velocity_distance.png)\n"
+        "![lateral velocity against lateral runout](velocity_distance_lateral.png)\n![distance against time]"
+        "(distance_time.png)\n![velocity against time](velocity_time.png)\n![runout against time](runout_time.png)\n";
+  page.markdown = md;
+  page.embed_other_charts = false;
+  page.settings = {{"scene", label},
+                   {"solver", std::string(to_string(s.solver.integrator)) + " (" + s.solver.reason + ")"},
+                   {"steps", std::to_string(s.run.steps)},
+                   {"worst overlap (of the smaller block)", fmt::format("{:.3g} %", 100.0 * s.solver.worst_penetration_ratio)},
+                   {"model revision", kModelRevision}};
+  io::write_html_report(dir, page);
 }
 
 }  // namespace ddafit::app

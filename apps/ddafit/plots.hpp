@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "forward/run_summary.hpp"
 #include "forward/scene.hpp"
 
 namespace ddafit::app {
@@ -32,5 +33,10 @@ bool plot_history(const std::string& dir, const Scene& scene, const std::string&
 // dark), fixed blocks shaded: the seed's Fig. 13.
 bool plot_configuration(const std::string& dir, const Scene& scene, const std::vector<std::vector<Vec2>>& final_blocks,
                         const std::string& title, std::string& reason);
+
+// report.html of `simulate --plots` (forward/io/html_report.hpp): the run's status and
+// point 1's runout as the headline, the per-point table, the charts above embedded, the
+// scene, solver and model revision. Throws std::runtime_error when it cannot be written.
+void write_run_report(const std::string& dir, const std::string& label, const SimulationResult& result);
 
 }  // namespace ddafit::app

@@ -6,6 +6,8 @@
 #include <fstream>
 #include <memory>
 #include <set>
+#include <sstream>
+#include <stdexcept>
 #include <iostream>
 #include <thread>
 
@@ -14,6 +16,7 @@
 #include "batch/stop_signals.hpp"
 #include "batch/mpi_pool.hpp"
 #include "apps/ddafit/clock_text.hpp"
+#include "forward/io/html_report.hpp"
 #include "forward/io/run_files.hpp"
 #include "apps/ddafit/scan_plots.hpp"
 #include "apps/ddafit/slurm_scan.hpp"
@@ -72,8 +75,10 @@ std::string spread_sentence(const inverse::FrictionSpread& f, double threshold) 
                      threshold, f.runs, f.interface, f.mu_low, deg(f.mu_low), f.mu_high, deg(f.mu_high));
 }
 
-void write_report_md(const fs::path& path, const ScanArgs& a, const inverse::Study& study, const inverse::DesignResult& r) {
-  std::ofstream md(path);
+// Writes report.md and returns its text (report.html shows the same).
+std::string write_report_md(const fs::path& path, const ScanArgs& a, const inverse::Study& study,
+                            const inverse::DesignResult& r) {
+  std::ostringstream md;
   md << "# Scan: " << study.path << " (" << a.design << " design)\n\n";
   md << fmt::format("{} points: {} forward runs made now, {} from the cache ({}).\n\n", r.runs.size(), r.run, r.cached,
                     r.cache_path);
@@ -116,6 +121,10 @@ void write_report_md(const fs::path& path, const ScanArgs& a, const inverse::Stu
       md << "\n";
     }
   }
+  std::ofstream out(path);
+  out << md.str();
+  if (!out) throw std::runtime_error(path.string() + ": cannot write the report");
+  return md.str();
 }
 
 int run_profile(const ScanArgs& args, const inverse::Study& study, const inverse::InversionOptions& options);
@@ -243,18 +252,30 @@ int run_scan(const ScanArgs& args) {
   if (args.design == "profile") return run_profile(args, study, options);
 
   inverse::DesignResult result;
+  std::string report;
   if (const int failed = guarded([&] { result = inverse::run_design(study, options, design_options(args)); }))
     return failed;
   std::cerr << "\n";
   try {
     write_runs_csv(fs::path(args.out) / "runs.csv", study, result);
-    write_report_md(fs::path(args.out) / "report.md", args, study, result);
+    report = write_report_md(fs::path(args.out) / "report.md", args, study, result);
   } catch (const std::exception& e) {
     std::cerr << args.out << ": --out: " << e.what() << "\n";
     return kExitBadInput;
   }
   std::string reason;
   if (!plot_scan(args.out, study, result, reason)) std::cerr << "note: charts not drawn: " << reason << "\n";
+  try {  // after the charts, which it embeds
+    io::HtmlReport page;
+    page.title = "Scan: " + study.path + " (" + args.design + " design)";
+    page.headline = spread_sentence(result.within4, 4.0);
+    page.markdown = report;
+    page.settings = {{"study", study.path}, {"design", args.design}, {"model revision", kModelRevision}};
+    io::write_html_report(args.out, page);
+  } catch (const std::exception& e) {
+    std::cerr << args.out << ": --out: " << e.what() << "\n";
+    return kExitBadInput;
+  }
   std::cout << fmt::format("{} runs ({} made, {} cached); wrote {}/runs.csv and report.md\n", result.runs.size(),
                            result.run, result.cached, args.out);
   std::cout << spread_sentence(result.within1, 1.0) << "\n" << spread_sentence(result.within4, 4.0) << "\n";

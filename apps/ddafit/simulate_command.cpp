@@ -146,6 +146,12 @@ int run_simulate(const SimulateArgs& args) {
     std::string reason;
     if (!plot_history(args.out, scene, label, reason) || !plot_configuration(args.out, scene, final_blocks, label, reason))
       std::cerr << "note: charts not drawn: " << reason << "\n";
+    try {
+      write_run_report(args.out, label, result);
+    } catch (const std::exception& e) {
+      std::cerr << args.out << ": --out: " << e.what() << "\n";
+      return kExitBadInput;
+    }
   }
   if (!args.quiet) {
     std::cout << fmt::format("{} steps, {} open-close iterations, {} step cuts, {} penalty raises, {:.2f} s wall\n",
