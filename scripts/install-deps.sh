@@ -20,6 +20,9 @@ packages=(
   openmpi-bin libopenmpi-dev     # scans under mpirun (a manager rank and worker ranks)
   slurm-wlm munge                # scan --slurm, tested against a real one-node cluster
   graphviz                       # docs/architecture.md: the library graph (scripts/architecture_graph.py)
+  pybind11-dev python3-dev        # the Python module (import ddafit; docs/python.md)
+  python3-numpy python3-pytest python3-matplotlib   # its arrays, its tests, the worked example's chart
+  chromium                       # the test that opens report.html as a browser draws it
 )
 if [ "$(id -u)" -ne 0 ]; then sudo=sudo; else sudo=; fi
 $sudo apt-get update -qq

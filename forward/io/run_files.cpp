@@ -64,7 +64,7 @@ void write_history_csv(const std::string& path, const Scene& scene, const Simula
   }
 }
 
-void write_summary_json(const std::string& path, const std::string& scene_path, const SimulationResult& result) {
+std::string summary_json_text(const std::string& scene_path, const SimulationResult& result) {
   const SimulationSummary& s = result.summary;
   nlohmann::ordered_json j;
   j["scene"] = scene_path;
@@ -106,10 +106,16 @@ void write_summary_json(const std::string& path, const std::string& scene_path, 
                           {"solve", s.profile.solve},
                           {"check_contacts", s.profile.check_contacts},
                           {"update", s.profile.update}};
-  write_json(path, j);
+  return j.dump(2) + "\n";
 }
 
-void write_stable_json(const std::string& path, const StableSearchInput& in, const StableSearchResult& r) {
+void write_summary_json(const std::string& path, const std::string& scene_path, const SimulationResult& result) {
+  std::ofstream out(path);
+  out << summary_json_text(scene_path, result);
+  if (!out) throw std::runtime_error(path + ": cannot write");
+}
+
+std::string stable_json_text(const StableSearchInput& in, const StableSearchResult& r) {
   nlohmann::ordered_json j;
   j["scene"] = in.scene_path;
   j["interface"] = in.interface;
@@ -133,7 +139,13 @@ void write_stable_json(const std::string& path, const StableSearchInput& in, con
     if (!t.failure.empty()) trial["failure"] = t.failure;
     j["trials"].push_back(trial);
   }
-  write_json(path, j);
+  return j.dump(2) + "\n";
+}
+
+void write_stable_json(const std::string& path, const StableSearchInput& in, const StableSearchResult& r) {
+  std::ofstream out(path);
+  out << stable_json_text(in, r);
+  if (!out) throw std::runtime_error(path + ": cannot write");
 }
 
 void write_ensemble_json(const std::string& path, const std::string& scene_path, const EnsembleSummary& e) {

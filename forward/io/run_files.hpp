@@ -24,6 +24,8 @@ void write_history_csv(const std::string& path, const Scene& scene, const Simula
 // summary.json: status, warnings, each point's quantities, the run's counters, the solver's
 // report and the wall time of each stage. Throws std::runtime_error when it cannot write.
 void write_summary_json(const std::string& path, const std::string& scene_path, const SimulationResult& result);
+// summary.json's text (what the Python module returns as a dict).
+std::string summary_json_text(const std::string& scene_path, const SimulationResult& result);
 
 // What a stable search was asked: for stable.json.
 struct StableSearchInput {
@@ -36,6 +38,7 @@ struct StableSearchInput {
 // stable.json: the criterion and its numbers, the bracket of the stable friction angle and
 // every trial. Throws std::runtime_error when it cannot write.
 void write_stable_json(const std::string& path, const StableSearchInput& input, const StableSearchResult& result);
+std::string stable_json_text(const StableSearchInput& input, const StableSearchResult& result);
 
 // ensemble.json: per measure point and quantity, the mean, standard deviation and range
 // over the completed members, with the jitter rule. ensemble.csv: one row per member and
