@@ -45,6 +45,18 @@ void expect_refused(const CommandResult& r, const std::string& key) {
   EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
 }
 
+// Found 2026-11-26: `--set interfaces.nope.friction_angle=3` ran (exit 0), adding an
+// interface no block used and leaving the one meant unchanged.
+TEST(BadInput, SetNamesAnExistingMaterialOrInterface) {
+  for (const std::string key : {"interfaces.nope.friction_angle", "materials.granite.density"}) {
+    const CommandResult r = ddafit("simulate " + kIncline + " --set " + key + "=3 --out " +
+                                       (fs::path(DDAFIT_TEST_TMP) / "set_unknown_entry" / "out").string(),
+                                   "set_unknown_entry");
+    expect_refused(r, key);
+    EXPECT_NE(r.err.find("(it has: "), std::string::npos) << r.err;
+  }
+}
+
 TEST(BadInput, MeshLengthsMustBeFiniteAndSized) {
   // Infinite or 1e308 spacings and block sizes reached the mesher (SIGFPE; "1 vertices" on
   // blocks the user never wrote); 1e-300 printed "-9223372036854775808 blocks".

@@ -317,6 +317,15 @@ Scene parse_scene(const std::string& yaml_text, const std::string& file_label, c
     std::vector<YAML::Node> chain{root};
     for (size_t k = 0; k + 1 < parts.size(); ++k) {
       YAML::Node next = chain.back()[parts[k]];
+      // A material or interface is named, not made: a misspelt name would otherwise add an
+      // entry no block uses and leave the one meant unchanged.
+      if (k == 1 && (parts[0] == "materials" || parts[0] == "interfaces") && !next.IsDefined()) {
+        std::string names;
+        for (const auto& entry : chain.back())
+          if (entry.first.IsScalar()) names += (names.empty() ? "" : ", ") + entry.first.as<std::string>();
+        throw SceneReadError(file_label + ": " + key + ": no " + (parts[0] == "materials" ? "material" : "interface") +
+                             " '" + parts[1] + "' in the scene" + (names.empty() ? "" : " (it has: " + names + ")"));
+      }
       // A section the scene does not have yet (control:, say) is created; the reader
       // then checks its keys as if the file had it.
       if (!next.IsDefined() || next.IsNull()) {
