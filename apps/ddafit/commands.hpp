@@ -72,6 +72,14 @@ struct SledArgs {
 };
 int run_sled(const SledArgs& args);
 
+struct ImportArgs {
+  std::string geometry;  // FILE.geo (DDAML)
+  std::string analysis;  // FILE.ana, optional
+  std::string units;     // "kN" or "SI", required
+  std::string out;       // the scene file written
+};
+int run_import(const ImportArgs& args);
+
 struct AdviseArgs {
   std::string scene;
   std::string quantity = "max_lateral_displacement";

@@ -111,6 +111,18 @@ int main(int argc, char** argv) {
   sled->add_option("--out", sl.out, "output folder")->capture_default_str();
   sled->add_option("--set", sl.sets, "override a scene value, KEY=VALUE (repeatable)");
 
+  ImportArgs im;
+  CLI::App* import_cmd = app.add_subcommand(
+      "import", "a scene from the XML input (DDAML) of the UC Berkeley DDA codes (ntdda): joint lines cut into "
+                "blocks, fixed and measured points, materials, joint properties, time step, gravity, penalty");
+  import_cmd->add_option("geometry", im.geometry, "geometry file (.geo, DDAML)")->required();
+  import_cmd->add_option("--analysis", im.analysis, "analysis file (.ana, DDAML); without it, placeholders are written");
+  import_cmd->add_option("--units", im.units,
+                         "kN: m, t/m^3, kN/m^3, kPa; SI: m, kg/m^3, N/m^3, Pa (the classic files carry no units)")
+      ->required()
+      ->check(CLI::IsMember({"kN", "SI"}));
+  import_cmd->add_option("--out", im.out, "scene file to write (YAML)")->required();
+
   AdviseArgs ad;
   CLI::App* advise = app.add_subcommand(
       "advise", "block-size advice: cut the scene's regions at a ladder of block sizes, run each as a small ensemble, "
@@ -281,6 +293,7 @@ int main(int argc, char** argv) {
     if (*mesh_cmd) return run_mesh(mesh);
     if (*stable) return run_stable(st);
     if (*sled) return run_sled(sl);
+    if (*import_cmd) return run_import(im);
     if (*advise) return run_advise(ad);
     if (*bench) return run_bench(be);
     if (*plot) return run_plot(pl);
