@@ -5,6 +5,7 @@
 #include <utility>
 #include <vector>
 
+#include "forward/io/ddaml_import.hpp"
 #include "forward/io/scene_reader.hpp"
 #include "fuzz/targets.hpp"
 #include "verify/cases.hpp"
@@ -61,6 +62,25 @@ int set_parser(const std::uint8_t* data, std::size_t size) {
     start = end + 1;
   }
   read(incline, "", overrides);
+  return 0;
+}
+
+int ddaml(const std::uint8_t* data, std::size_t size) {
+  const std::string input(reinterpret_cast<const char*>(data), size);
+  const size_t split = input.find("\n%%\n");
+  const std::filesystem::path dir = scratch_folder();
+  {
+    std::ofstream geo(dir / "in.geo", std::ios::binary | std::ios::trunc);
+    geo << input.substr(0, split);
+    std::ofstream ana(dir / "in.ana", std::ios::binary | std::ios::trunc);
+    ana << (split == std::string::npos ? "" : input.substr(split + 4));
+  }
+  try {
+    io::import_ddaml((dir / "in.geo").string(), split == std::string::npos ? "" : (dir / "in.ana").string(),
+                     io::DdamlUnits::SI);
+  } catch (const io::SceneReadError& e) {
+    check_message(e.what());
+  }
   return 0;
 }
 

@@ -27,6 +27,10 @@ int study(const std::uint8_t* data, std::size_t size);
 // Lines KEY=VALUE applied as --set overrides to the incline scene.
 int set_parser(const std::uint8_t* data, std::size_t size);
 
+// A DDAML geometry file and, after a line "%%", its analysis file, imported as ddafit
+// import does (SI units); the joint lines are cut into blocks.
+int ddaml(const std::uint8_t* data, std::size_t size);
+
 // Aborts with `what` on stderr: the finding libFuzzer reports.
 [[noreturn]] void finding(const std::string& what);
 

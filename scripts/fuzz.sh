@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Fuzz one of ddafit's input readers with libFuzzer (clang):
 #   bash scripts/fuzz.sh TARGET SECONDS [JOBS]
-# TARGET: scene_reader | region_mesh | study | set_parser (fuzz/targets.hpp). Builds
+# TARGET: scene_reader | region_mesh | study | set_parser | ddaml (fuzz/targets.hpp). Builds
 # build-fuzz with clang, AddressSanitizer and UBSan (once; later runs rebuild what
 # changed), starts from fuzz/corpus/TARGET plus fuzz/regressions/TARGET, and keeps what it
 # learns in build-fuzz/corpus/TARGET. A finding is written to fuzz/findings/ and the
@@ -13,8 +13,8 @@ target=${1:?usage: scripts/fuzz.sh TARGET SECONDS [JOBS]}
 seconds=${2:?usage: scripts/fuzz.sh TARGET SECONDS [JOBS]}
 jobs=${3:-1}
 case $target in
-  scene_reader|region_mesh|study|set_parser) ;;
-  *) echo "fuzz.sh: unknown target '$target' (scene_reader, region_mesh, study, set_parser)" >&2; exit 2 ;;
+  scene_reader|region_mesh|study|set_parser|ddaml) ;;
+  *) echo "fuzz.sh: unknown target '$target' (scene_reader, region_mesh, study, set_parser, ddaml)" >&2; exit 2 ;;
 esac
 if [ ! -f build-fuzz/CMakeCache.txt ]; then
   CC=clang CXX=clang++ cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo -DDDAFIT_FUZZ=ON \

@@ -138,6 +138,18 @@ TEST(DdamlImport, WhatDdafitCannotRepresentIsRefusedWithItsLine) {
     }
     EXPECT_FALSE(fs::exists(dir / "s.yaml")) << c.what;
   }
+  // Found by review 2026-11-26: nesting deep enough would overflow the reader's stack.
+  {
+    const fs::path deep = fs::path(DDAFIT_TEST_TMP) / "ddaml_refused" / "deep.geo";
+    std::string text;
+    for (int k = 0; k < 100000; ++k) text += "<a>";
+    std::ofstream(deep) << text;
+    const auto r = ddafit_test::ddafit("import " + deep.string() + " --units SI --out " +
+                                           (deep.parent_path() / "deep.yaml").string(), "ddaml_refused/deep");
+    EXPECT_EQ(r.code, 2) << r.err;
+    EXPECT_EQ(r.signal, 0);
+    EXPECT_NE(r.err.find("nested deeper than 64"), std::string::npos) << r.err;
+  }
   // Units are never guessed.
   const auto r = ddafit_test::ddafit("import " + kDdaml + "incline.geo --out " +
                                          (fs::path(DDAFIT_TEST_TMP) / "ddaml_refused" / "u.yaml").string(),

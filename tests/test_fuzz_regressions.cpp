@@ -41,6 +41,7 @@ int run_inputs(const std::string& name, Target target) {
 TEST(FuzzRegressions, SceneReader) { EXPECT_GE(run_inputs("scene_reader", ddafit::fuzz::scene_reader), 2); }
 TEST(FuzzRegressions, RegionMesh) { EXPECT_GE(run_inputs("region_mesh", ddafit::fuzz::region_mesh), 2); }
 TEST(FuzzRegressions, Study) { EXPECT_GE(run_inputs("study", ddafit::fuzz::study), 2); }
+TEST(FuzzRegressions, Ddaml) { EXPECT_GE(run_inputs("ddaml", ddafit::fuzz::ddaml), 2); }
 TEST(FuzzRegressions, SetParser) { EXPECT_GE(run_inputs("set_parser", ddafit::fuzz::set_parser), 2); }
 
 }  // namespace

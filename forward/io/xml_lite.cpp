@@ -85,6 +85,12 @@ class Parser {
     return out;
   }
   XmlElement element() {
+    // Each level is a call: a file nesting thousands of elements would exhaust the stack.
+    if (++depth_ > kMaxDepth) fail("elements nested deeper than " + std::to_string(kMaxDepth));
+    struct Leave {
+      int& depth;
+      ~Leave() { --depth; }
+    } leave{depth_};
     XmlElement e;
     e.line = line_;
     advance(1);  // '<'
@@ -137,8 +143,10 @@ class Parser {
 
   const std::string& s_;
   const std::string& label_;
+  static constexpr int kMaxDepth = 64;  // DDAML nests four levels
   size_t at_ = 0;
   int line_ = 1;
+  int depth_ = 0;
 };
 
 }  // namespace
