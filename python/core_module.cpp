@@ -100,7 +100,7 @@ struct PyResult {
 
 PyResult simulate_scene(const py::object& scene_or_path, int threads, const py::dict& settings) {
   const PyScene s = scene_from(scene_or_path, settings);
-  batch::set_worker_threads(threads > 0 ? threads : 0);
+  batch::set_thread_budget(threads);  // 0: one per core; BLAS held to one (thread_budget.hpp)
   std::vector<std::vector<Vec2>> outlines;
   std::vector<bool> fixed;
   SimulationResult result;
