@@ -98,6 +98,12 @@ struct SimulationOptions {
   // by 2.6e-4 m. Cost: 3 % on a standing wall, 28 % on Vajont section I (docs/performance.md).
   int contact_passes = 16;
 
+  // control.sleep_time, s: a group of touching blocks at rest this long sleeps (no sweeps,
+  // no integration) until a moving block comes within the contact margin (forward/substep/
+  // sleep.hpp; Box2D's islands). At rest: every vertex slower than 1 % of rest_speed. 0 (the
+  // default) never sleeps, the reference every published number was made with.
+  double sleep_time = 0.0;
+
   // Soft contact constraint: stiffness as a frequency, Hz, and damping ratio. 0 Hz means
   // automatic: an eighth of the substep rate, Box2D's ratio (Box2D also caps it at 30 Hz
   // for games; at 30 Hz a stack of five 1 m blocks sank 1 cm; at a quarter of the rate a

@@ -86,6 +86,8 @@ struct SolverReport {
   std::string worst_penetration_at;              // the two blocks
   long unconverged_points = 0;  // point-steps still closing faster than the tolerance after the last sweep
   long fast_steps = 0;          // steps in which a block moved further than the contact margin allows
+  long sleeping_block_steps = 0;  // summed over steps: blocks asleep (control.sleep_time)
+  long wakes = 0;                 // sleeping groups woken by a moving block
 };
 
 // Interrupted: the caller asked the run to stop (SimulationHooks::should_stop) before the

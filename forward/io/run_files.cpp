@@ -99,6 +99,8 @@ std::string summary_json_text(const std::string& scene_path, const SimulationRes
     j["solver"]["mean_contact_points"] = static_cast<double>(solver.contact_points) / steps;
     j["solver"]["unconverged_points"] = solver.unconverged_points;
     j["solver"]["fast_steps"] = solver.fast_steps;
+    j["solver"]["sleeping_block_steps"] = solver.sleeping_block_steps;
+    j["solver"]["wakes"] = solver.wakes;
   }
   j["profile_seconds"] = {{"settle", s.profile.settle},
                           {"find_contacts", s.profile.find_contacts},

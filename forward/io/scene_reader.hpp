@@ -96,6 +96,7 @@ inline constexpr ControlKey kControlKeys[] = {
     {"contact_damping_ratio", &SimulationOptions::contact_damping_ratio},
     {"rigid_blocks", &SimulationOptions::rigid_blocks},
     {"contact_passes", &SimulationOptions::contact_passes},
+    {"sleep_time", &SimulationOptions::sleep_time},
 };
 
 }  // namespace ddafit::io

@@ -112,10 +112,12 @@ SweepSettings prepare_step(SubstepContext& w, double h) {
   const double slop = w.detection.settings.linear_slop;
   ScopedTimer timer(w.profile->assemble);
   compute_block_masses(s, w.state.masses);
+  mask_sleeping(w.sleep, w.state.masses);
   water_accelerations(s, w.scene.gravity.norm(), h * w.options.substeps, w.state);
   prepare_contacts(w, h, kDeepOverlap);
   w.state.deep.assign(w.contacts.manifolds.size(), 0);
   w.colours = colour_manifolds(s, w.contacts.manifolds);
+  if (w.sleep.enabled()) drop_sleeping_manifolds(w.contacts.manifolds, w.state.masses, w.colours);
   // The contact spring at an eighth of the substep rate, Box2D's ratio (30 Hz at 240 Hz),
   // without its 30 Hz cap: at 30 Hz a stack of five 1 m blocks sank 1 cm into its
   // contacts; at a quarter of the rate a heavy block on a light one (mass ratio 100)
@@ -331,6 +333,11 @@ void run_substep(const Scene& scene, BlockSystem& s, RunRecorder& recorder, Simu
   const double max_move = o.max_displacement_ratio * s.half_model_size;
   w.max_move = max_move;
   w.ground = GroundTrack(scene.earthquake);
+  // Sleeping (sleep.hpp): not under an earthquake, whose load changes every step.
+  w.sleep.sleep_time = w.ground.present() ? 0.0 : o.sleep_time;
+  w.sleep.sleep_speed = 0.01 * scene.rest_speed;
+  w.sleep.rest_time.assign(n, 0.0);
+  w.sleep.asleep.assign(n, 0);
   CollideSettings& settings = w.detection.settings;
   settings.margin = o.search_distance_factor * max_move;
   settings.linear_slop = kSlopRatio * max_move;
@@ -371,8 +378,12 @@ void run_substep(const Scene& scene, BlockSystem& s, RunRecorder& recorder, Simu
       summary.message = out.str();
       return;
     }
+    wake_touched_groups(s, w.contacts, w.reach, w.sleep);
     w.time = time;
     advance(w, dt, true);
+    update_sleep(s, w.contacts, w.reach, dt, w.sleep);
+    report.sleeping_block_steps = w.sleep.block_steps_asleep;
+    report.wakes = w.sleep.wakes;
     audit.load_work += w.load_work;
     time = landing >= 0.0 ? landing : time + dt;
     ++run.steps;

@@ -10,6 +10,7 @@
 #include "forward/contact/overlap.hpp"
 #include "forward/run_summary.hpp"
 #include "forward/scene.hpp"
+#include "forward/substep/sleep.hpp"
 #include "forward/substep/solve_contacts.hpp"
 #include "forward/substep/substep_types.hpp"
 
@@ -43,6 +44,7 @@ struct SubstepContext {
   std::vector<double> reach;  // per block: largest distance of a vertex from the centroid
   std::vector<char> near;      // per block: had a contact point within the margin last step
   std::vector<double> extra_reach;  // per block: how far its step travel exceeds the margin's cover
+  SleepState sleep;                 // which blocks sleep (off unless control.sleep_time > 0)
 };
 
 }  // namespace ddafit
