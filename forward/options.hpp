@@ -93,9 +93,10 @@ struct SimulationOptions {
   // before) leaves the coupling of a manifold's normal and friction impulses through the
   // block's rotation unconverged at an impact: a block landing on a 2:1 slope of friction
   // 25 deg kept 4.2 mm/s of the slip the landing's friction should have taken, and landings
-  // near the friction angle ran up to 2.4 cm long in 1 s (docs/theory.md §13). With 16 the
-  // landing sweep of tests/test_landing.cpp holds 1e-4 m; 8 missed one near-toppling block
-  // by 2.6e-4 m. Cost: 3 % on a standing wall, 28 % on Vajont section I (docs/performance.md).
+  // near the friction angle ran up to 1.7 cm long in 1 s (docs/theory.md §13). With 16 the
+  // landing sweep of tests/test_landing.cpp holds 5e-5 m (worst 3.3e-6); 8 missed one block
+  // by 2.6e-4 m. Cost: 3 % on a standing wall, ~45 % on Vajont section I, ~60 % on
+  // section VII; 2-8 passes cost as much and land fewer blocks right (docs/performance.md).
   int contact_passes = 16;
 
   // control.sleep_time, s: a group of touching blocks at rest this long sleeps (no sweeps,
