@@ -34,6 +34,13 @@ std::string verdict_of(const HypothesisRanking& r) {
 
 }  // namespace
 
+Study read_checked_study(const std::string& path) {
+  Study study = read_study(path);
+  if (study.hypotheses.empty()) check_study_against_scene(study);
+  for (const Hypothesis& h : study.hypotheses) check_study_against_scene(hypothesis_study(study, h));
+  return study;
+}
+
 Study hypothesis_study(const Study& study, const Hypothesis& h) {
   Study s = study;
   s.hypotheses.clear();

@@ -21,6 +21,11 @@ namespace ddafit::inverse {
 // has them (else the study's), and no hypotheses of its own.
 Study hypothesis_study(const Study& study, const Hypothesis& h);
 
+// read_study(), then each hypothesis (or the study itself, without hypotheses) checked
+// against the scene with its own settings (its law may be what makes a parameter such as
+// weakening_velocity settable). Throws StudyError. For `ddafit invert` and ddafit.invert().
+Study read_checked_study(const std::string& path);
+
 struct HypothesisFit {
   std::string name;
   Study study;               // as fitted (hypothesis_study)

@@ -36,12 +36,7 @@ py::object json_loads(const std::string& text) { return py::module_::import("jso
 
 io::Overrides overrides_of(const py::dict& settings) {
   io::Overrides out;
-  for (const auto& [key, value] : settings) {
-    const py::object v = py::reinterpret_borrow<py::object>(value);
-    // True/False as the scene files write them, numbers and names as text.
-    std::string text = py::isinstance<py::bool_>(v) ? (v.cast<bool>() ? "true" : "false") : py::str(v).cast<std::string>();
-    out.emplace_back(py::str(key).cast<std::string>(), text);
-  }
+  for (const auto& [key, value] : settings) out.emplace_back(py::str(key).cast<std::string>(), setting_text(value));
   return out;
 }
 
@@ -170,9 +165,7 @@ py::object stable_search(const py::object& scene_or_path, const std::string& int
 }
 
 py::object invert_study(const std::string& study_path, const std::string& out, bool resume, int budget) {
-  inverse::Study study = inverse::read_study(study_path);
-  if (study.hypotheses.empty()) inverse::check_study_against_scene(study);
-  for (const inverse::Hypothesis& h : study.hypotheses) inverse::check_study_against_scene(inverse::hypothesis_study(study, h));
+  const inverse::Study study = inverse::read_checked_study(study_path);
   if (!study.hypotheses.empty()) throw py::value_error(study_path + ": hypotheses: rank them with the command line, ddafit invert");
   inverse::InversionOptions options;
   options.out_dir = out;

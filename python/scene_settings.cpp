@@ -46,6 +46,11 @@ std::map<std::string, py::object> settings_of(const Scene& s) {
 
 }  // namespace
 
+std::string setting_text(const py::handle& value) {
+  if (py::isinstance<py::bool_>(value)) return value.cast<bool>() ? "true" : "false";
+  return py::str(value).cast<std::string>();
+}
+
 void bind_scene(py::module_& m) {
   py::class_<PyScene>(m, "Scene", "A scene read from its file, with the settings changed since (see docs/python.md)")
       .def_readonly("path", &PyScene::path)
@@ -59,8 +64,7 @@ void bind_scene(py::module_& m) {
       .def("__setitem__",
            [](PyScene& s, const std::string& key, const py::object& value) {
              io::Overrides changed = s.overrides;
-             changed.emplace_back(key, py::isinstance<py::bool_>(value) ? (value.cast<bool>() ? "true" : "false")
-                                                                        : py::str(value).cast<std::string>());
+             changed.emplace_back(key, setting_text(value));
              s.scene = io::read_scene(s.path, changed);  // throws (ValueError) and leaves s as it was
              s.overrides = changed;
            })

@@ -21,4 +21,8 @@ struct PyScene {
 
 void bind_scene(pybind11::module_& m);
 
+// A Python value as the scene files write it (the text of a --set): True/False as
+// true/false, numbers and names as their str().
+std::string setting_text(const pybind11::handle& value);
+
 }  // namespace ddafit::python

@@ -66,11 +66,7 @@ void print_plan(const inverse::Study& study, int budget, const std::string& out)
 
 bool load_study(const std::string& path, inverse::Study& study) {
   try {
-    study = inverse::read_study(path);
-    // Each hypothesis against the scene with its own settings (its law may be what makes a
-    // parameter such as weakening_velocity settable).
-    if (study.hypotheses.empty()) inverse::check_study_against_scene(study);
-    for (const inverse::Hypothesis& h : study.hypotheses) inverse::check_study_against_scene(inverse::hypothesis_study(study, h));
+    study = inverse::read_checked_study(path);
     return true;
   } catch (const inverse::StudyError& e) {
     std::cerr << e.what() << "\n";

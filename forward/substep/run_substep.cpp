@@ -63,13 +63,6 @@ constexpr double kCorrectionShare = 0.5;
 constexpr int kDeepIterations = 16;
 
 
-// The fastest a vertex of block b moves: centroid speed plus the rotation and strain
-// rates times the block's reach.
-double vertex_speed_bound(const Block& b, double reach) {
-  const Vec6& v = b.velocity;
-  return std::hypot(v[0], v[1]) + reach * (std::abs(v[2]) + std::abs(v[3]) + std::abs(v[4]) + std::abs(v[5]));
-}
-
 double block_reach(const BlockSystem& s, int b) {
   const Block& block = s.blocks[b];
   double r = 0.0;

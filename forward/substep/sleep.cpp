@@ -6,11 +6,6 @@
 namespace ddafit {
 namespace {
 
-// The fastest a vertex of block b moves (rigid-body part: the substep solver's blocks).
-double vertex_speed(const Block& b, double reach) {
-  return std::hypot(b.velocity[0], b.velocity[1]) + reach * std::abs(b.velocity[2]);
-}
-
 struct Groups {
   std::vector<int> parent;
   explicit Groups(size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0); }
@@ -50,7 +45,7 @@ void wake_touched_groups(const BlockSystem& s, const ContactSet& contacts, const
     const int a = m.block_a, b = m.block_b;
     for (const auto& [sleeper, other] : {std::pair{a, b}, std::pair{b, a}}) {
       if (!sleep.asleep[sleeper] || s.blocks[other].fixed || sleep.asleep[other]) continue;
-      if (vertex_speed(s.blocks[other], reach[other]) < sleep.sleep_speed) continue;
+      if (vertex_speed_bound(s.blocks[other], reach[other]) < sleep.sleep_speed) continue;
       wake_root[g.find(sleeper)] = 1;
       any = true;
     }
@@ -88,7 +83,7 @@ void update_sleep(BlockSystem& s, const ContactSet& contacts, const std::vector<
       ++sleep.block_steps_asleep;
       continue;
     }
-    sleep.rest_time[b] = vertex_speed(s.blocks[b], reach[b]) < sleep.sleep_speed ? sleep.rest_time[b] + dt : 0.0;
+    sleep.rest_time[b] = vertex_speed_bound(s.blocks[b], reach[b]) < sleep.sleep_speed ? sleep.rest_time[b] + dt : 0.0;
   }
   Groups g = touching_groups(s, contacts, false);
   std::vector<char> ready(n, 1);

@@ -4,6 +4,9 @@
 // ImpulseState.
 #pragma once
 
+#include <cmath>
+
+#include "forward/block_system.hpp"
 #include "forward/contact/contact_types.hpp"
 #include "forward/kinematics.hpp"
 
@@ -22,6 +25,14 @@ struct BlockMass {
 };
 
 inline double cross2(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
+
+// The fastest a vertex of block b moves: centroid speed plus the rotation and strain rates
+// times the block's reach (its largest vertex distance from the centroid). The step control
+// and sleeping read it.
+inline double vertex_speed_bound(const Block& b, double reach) {
+  const Vec6& v = b.velocity;
+  return std::hypot(v[0], v[1]) + reach * (std::abs(v[2]) + std::abs(v[3]) + std::abs(v[4]) + std::abs(v[5]));
+}
 
 // Velocity of the material point at r (about the centroid) of a block moving with
 // q = (vx, vy, w), the rigid-body part of its six rates; also its displacement for a
