@@ -23,13 +23,17 @@ EnsembleRuns ensemble_runs(int members, int jobs, int threads) {
 
 std::vector<SimulationResult> run_ensemble(const Scene& scene, const EnsembleRuns& runs) {
   std::vector<SimulationResult> results(static_cast<size_t>(std::max(runs.members, 0)));
+  std::vector<int> todo = runs.realisations;
+  if (todo.empty())
+    for (int k = 0; k < runs.members; ++k) todo.push_back(k);
+  const int count = static_cast<int>(todo.size());
   const auto member = [&](int k) {
     Scene nudged = scene;
     nudged.options.realisation = k;
     return simulate(nudged);
   };
   if (runs.jobs <= 1) {
-    for (int k = 0; k < runs.members; ++k) {
+    for (const int k : todo) {
       results[k] = member(k);
       if (runs.on_member) runs.on_member(k, results[k]);
     }
@@ -41,17 +45,17 @@ std::vector<SimulationResult> run_ensemble(const Scene& scene, const EnsembleRun
   std::atomic<int> next{0};
   const auto work = [&] {
     set_worker_threads(runs.threads_per_run);
-    for (int k = next++; k < runs.members; k = next++) {
-      SimulationResult r = member(k);
+    for (int i = next++; i < count; i = next++) {
+      SimulationResult r = member(todo[i]);
       std::lock_guard<std::mutex> lock(mutex);
-      results[k] = std::move(r);
-      finished.push_back(k);
+      results[todo[i]] = std::move(r);
+      finished.push_back(todo[i]);
       ready.notify_one();
     }
   };
   std::vector<std::thread> workers;
-  for (int w = 0; w < std::min(runs.jobs, runs.members); ++w) workers.emplace_back(work);
-  for (int received = 0; received < runs.members; ++received) {
+  for (int w = 0; w < std::min(runs.jobs, count); ++w) workers.emplace_back(work);
+  for (int received = 0; received < count; ++received) {
     std::unique_lock<std::mutex> lock(mutex);
     ready.wait(lock, [&] { return !finished.empty(); });
     const int k = finished.front();

@@ -8,10 +8,12 @@
 
 #include <chrono>
 #include <cstdlib>
+#include <functional>
 #include <vector>
 
 #include "forward/io/run_json.hpp"
 #include "batch/thread_budget.hpp"
+#include "forward/simulation.hpp"
 #include "inverse/forward_call.hpp"
 
 namespace ddafit::batch {
@@ -29,8 +31,7 @@ SimulationResult failed(const std::string& why) {
 // One forward run in a child process; the child writes its encoded result to a pipe.
 // Returns the encoded result, or an empty string and `why` when the child crashed, hung
 // past the timeout (then it is killed) or wrote nothing.
-std::string run_in_child(const inverse::StudyScene& scene, const std::vector<double>& values, double timeout,
-                         std::string& why) {
+std::string run_in_child(const std::function<SimulationResult()>& run, double timeout, std::string& why) {
   int fds[2];
   if (pipe(fds) != 0) {
     why = "cannot create a pipe for the run";
@@ -40,7 +41,7 @@ std::string run_in_child(const inverse::StudyScene& scene, const std::vector<dou
   const pid_t pid = fork();
   if (pid == 0) {
     close(fds[0]);
-    const SimulationResult r = scene.run(values, inverse::run_forward);
+    const SimulationResult r = run();
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     const std::string text = io::encode_run(r, seconds);
     for (size_t at = 0; at < text.size();) {
@@ -147,9 +148,13 @@ void mpi_release_workers(const MpiWorld& world) {
   for (int rank = 1; rank < world.size; ++rank) MPI_Send(nullptr, 0, MPI_DOUBLE, rank, kTagStop, MPI_COMM_WORLD);
 }
 
-void mpi_worker(const inverse::Study& study, int threads, double timeout) {
+namespace {
+
+// Ranks > 0: run what rank 0 sends (each message: the index, then the point's values)
+// until it says stop.
+void serve(const std::function<SimulationResult(const std::vector<double>&)>& run_point, int threads,
+           double timeout) {
   set_worker_threads(threads);
-  const inverse::StudyScene scene(study);  // read once per worker; each child copies it
   while (true) {
     MPI_Status status;
     MPI_Probe(0, MPI_ANY_TAG, MPI_COMM_WORLD, &status);
@@ -159,15 +164,41 @@ void mpi_worker(const inverse::Study& study, int threads, double timeout) {
     MPI_Recv(message.data(), count, MPI_DOUBLE, 0, status.MPI_TAG, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
     if (status.MPI_TAG == kTagStop) return;
     const std::vector<double> values(message.begin() + 1, message.end());
+    const auto run = [&] { return run_point(values); };
     // A crash or a hang is retried once: a node's hiccup should not count as physics.
-    std::string why, text = run_in_child(scene, values, timeout, why);
-    if (text.empty()) text = run_in_child(scene, values, timeout, why);
+    std::string why, text = run_in_child(run, timeout, why);
+    if (text.empty()) text = run_in_child(run, timeout, why);
     if (text.empty()) text = io::encode_run(failed(why + ", twice (worker rank " + std::to_string(status.MPI_SOURCE) + ")"), 0.0);
     char index[21];
     std::snprintf(index, sizeof index, "%-20lu", static_cast<unsigned long>(message[0]));
     const std::string reply = std::string(index, 20) + text;
     MPI_Send(reply.data(), static_cast<int>(reply.size()), MPI_CHAR, 0, kTagResult, MPI_COMM_WORLD);
   }
+}
+
+}  // namespace
+
+void mpi_worker(const inverse::Study& study, int threads, double timeout) {
+  const inverse::StudyScene scene(study);  // read once per worker; each child copies it
+  const size_t n = study.parameters.size();
+  serve(
+      [&](const std::vector<double>& values) {
+        // One value more than the study has parameters: a realisation of the model spread.
+        if (values.size() == n + 1)
+          return scene.run({values.begin(), values.end() - 1}, inverse::run_forward, static_cast<int>(values.back()));
+        return scene.run(values, inverse::run_forward);
+      },
+      threads, timeout);
+}
+
+void mpi_ensemble_worker(const Scene& scene, int threads, double timeout) {
+  serve(
+      [&](const std::vector<double>& values) {
+        Scene member = scene;
+        member.options.realisation = values.empty() ? 0 : static_cast<int>(values.front());
+        return simulate(member);
+      },
+      threads, timeout);
 }
 
 }  // namespace ddafit::batch

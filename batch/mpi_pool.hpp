@@ -1,5 +1,5 @@
-// Scans under `mpirun -n K ddafit scan ...`: rank 0 runs the scan as it would alone and
-// hands its forward runs to ranks 1..K-1. Each worker makes a run in a child process, so a
+// Scans and ensembles under `mpirun -n K ddafit scan ...` (or `simulate --ensemble`): rank 0
+// runs the command as it would alone and hands its forward runs to ranks 1..K-1. Each worker makes a run in a child process, so a
 // run that crashes or hangs costs that run (retried once, then recorded as failed), never
 // the job. Results come back as the run's summary; the cache on rank 0 is the one writer.
 #pragma once
@@ -28,7 +28,12 @@ inverse::Objective::BatchRunner mpi_batch_runner(const MpiWorld& world);
 void mpi_release_workers(const MpiWorld& world);
 
 // Ranks > 0: run points for rank 0 until it says stop. `threads` per run; a run longer
-// than `timeout_seconds` is killed.
+// than `timeout_seconds` is killed. A point with one value more than the study has
+// parameters is realisation (that value) of the model spread (inverse/model_spread.hpp).
 void mpi_worker(const inverse::Study& study, int threads, double timeout_seconds);
+
+// Ranks > 0 of `simulate --ensemble` under mpirun: each point rank 0 sends is one value,
+// the realisation of `scene` to run (forward/perturb.hpp).
+void mpi_ensemble_worker(const Scene& scene, int threads, double timeout_seconds);
 
 }  // namespace ddafit::batch

@@ -168,14 +168,26 @@ void add_scene_file(const std::filesystem::path& path, Fnv1a& hash, std::set<std
 
 }  // namespace
 
+namespace {
+std::string hex(const Fnv1a& hash) {
+  char buf[20];
+  std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(hash.h));
+  return buf;
+}
+}  // namespace
+
 std::string scene_input_hash(const Study& study) {
   Fnv1a hash;
   std::set<std::string> seen;
   add_scene_file(study.scene_path, hash, seen, 0);
   for (const auto& [key, value] : study.settings) hash.add(key + "=" + value);
-  char buf[20];
-  std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(hash.h));
-  return buf;
+  return hex(hash);
+}
+
+std::string text_hash(const std::vector<std::string>& pieces) {
+  Fnv1a hash;
+  for (const std::string& piece : pieces) hash.add(piece);
+  return hex(hash);
 }
 
 void check_study_against_scene(const Study& study) {

@@ -62,4 +62,8 @@ class StudyScene {
 // and the study's fixed settings. Changing any of these starts a new cache key.
 std::string scene_input_hash(const Study& study);
 
+// The same hash of pieces of text (each piece ends with a separator): the key of a scene
+// given whole, as `simulate --ensemble` caches its realisations under.
+std::string text_hash(const std::vector<std::string>& pieces);
+
 }  // namespace ddafit::inverse

@@ -31,7 +31,7 @@ struct InversionOptions {
 };
 
 // The part of the options that runs a study's model-spread ensemble (model_spread.hpp).
-inline ModelSpreadRuns spread_runs(const InversionOptions& o) { return {o.jobs, o.on_worker_start, o.on_log}; }
+inline ModelSpreadRuns spread_runs(const InversionOptions& o) { return {o.jobs, o.on_worker_start, o.on_log, o.batch_runner}; }
 
 // Set-up problems (the cache cannot be opened, or exists without --resume): one line.
 struct InversionError : std::runtime_error {

@@ -41,28 +41,41 @@ ModelSpread measure_model_spread(const Study& study, const ModelSpreadRuns& opti
   // The runs share nothing; the cache is written by this thread only, as each ends.
   const StudyScene scene(study);
   std::mutex mutex;
-  std::atomic<size_t> next{0};
-  const auto work = [&] {
-    if (options.on_worker_start && options.jobs > 1) options.on_worker_start();
-    for (size_t i = next++; i < todo.size(); i = next++) {
-      const auto t0 = std::chrono::steady_clock::now();
-      SimulationResult run = scene.run(out.at, forward, todo[i]);
-      const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-      std::lock_guard<std::mutex> lock(mutex);
-      cache.store(realisation_key(study, out.at, todo[i]), run, seconds, false);
-      summaries[todo[i]] = std::move(run.summary);
-      ++out.run;
-      if (options.on_log)
-        options.on_log(fmt::format("model spread: realisation {} of {} {} in {:.1f} s", todo[i], members,
-                                   summaries[todo[i]].status == RunStatus::Completed ? "completed" : "failed",
-                                   seconds));
-    }
+  const auto finished = [&](int k, SimulationResult run, double seconds, const char* where) {
+    std::lock_guard<std::mutex> lock(mutex);
+    cache.store(realisation_key(study, out.at, k), run, seconds, false);
+    summaries[k] = std::move(run.summary);
+    ++out.run;
+    if (options.on_log)
+      options.on_log(fmt::format("model spread: realisation {} of {} {} in {:.1f} s{}", k, members,
+                                 summaries[k].status == RunStatus::Completed ? "completed" : "failed", seconds, where));
   };
-  std::vector<std::thread> workers;
-  for (int w = 1; w < std::min<int>(std::max(options.jobs, 1), static_cast<int>(todo.size())); ++w)
-    workers.emplace_back(work);
-  work();
-  for (std::thread& t : workers) t.join();
+  if (options.batch_runner && !todo.empty()) {
+    std::vector<std::vector<double>> points;
+    for (const int k : todo) {
+      points.push_back(out.at);
+      points.back().push_back(static_cast<double>(k));
+    }
+    options.batch_runner(points, [&](size_t i, SimulationResult run, double seconds) {
+      finished(todo[i], std::move(run), seconds, " on a worker rank");
+    });
+  } else {
+    std::atomic<size_t> next{0};
+    const auto work = [&] {
+      if (options.on_worker_start && options.jobs > 1) options.on_worker_start();
+      for (size_t i = next++; i < todo.size(); i = next++) {
+        const auto t0 = std::chrono::steady_clock::now();
+        SimulationResult run = scene.run(out.at, forward, todo[i]);
+        const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        finished(todo[i], std::move(run), seconds, "");
+      }
+    };
+    std::vector<std::thread> workers;
+    for (int w = 1; w < std::min<int>(std::max(options.jobs, 1), static_cast<int>(todo.size())); ++w)
+      workers.emplace_back(work);
+    work();
+    for (std::thread& t : workers) t.join();
+  }
 
   // The statistics of forward/analysis/ensemble, over the members that completed.
   const EnsembleSummary spread = summarise_ensemble(summaries);

@@ -10,6 +10,7 @@
 
 #include "inverse/evaluation_cache.hpp"
 #include "inverse/forward_call.hpp"
+#include "inverse/objective.hpp"
 
 namespace ddafit::inverse {
 
@@ -26,6 +27,9 @@ struct ModelSpreadRuns {
   int jobs = 1;                                     // runs at a time
   std::function<void()> on_worker_start;            // first thing on each extra thread
   std::function<void(const std::string&)> on_log;   // one line per run ended
+  // Where the realisations run instead of threads (MPI worker ranks under mpirun): each
+  // point it is given is the start point with the realisation appended as one more value.
+  Objective::BatchRunner batch_runner;
 };
 
 // Realisations run `runs.jobs` at a time; each is cached under the start point's key

@@ -35,7 +35,10 @@ struct SimulateArgs {
   int ensemble = 0;           // > 0: run this many realisations (forward/perturb.hpp) and their spread
   int jobs = 1;               // --ensemble: realisations at a time
   double jitter = 0.0;        // --ensemble: largest nudge / block size; 0 = kJitterRatio
+  bool resume = false;        // --ensemble: reuse the realisations cached in the output folder
+  double run_timeout = 3600.0;  // s; --ensemble under mpirun: a run past this is killed (and retried once)
   int threads = 0;            // the command's --threads (0 = the core count)
+  int mpi_rank = 0, mpi_size = 1;  // --ensemble under mpirun: this process's rank and the world's size
 };
 int run_simulate(const SimulateArgs& args);
 // simulate --ensemble: the scene is loaded and the output folder ready (ensemble_command.cpp).

@@ -6,11 +6,21 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <functional>
 #include <iostream>
+#include <memory>
+#include <mutex>
+#include <thread>
 
 #include "apps/ddafit/commands.hpp"
 #include "apps/ddafit/exit_codes.hpp"
 #include "batch/ensemble_runs.hpp"
+#include "batch/mpi_pool.hpp"
+#include "batch/thread_budget.hpp"
+#include "forward/model_revision.hpp"
+#include "forward/io/scene_reader.hpp"
+#include "inverse/evaluation_cache.hpp"
+#include "inverse/forward_call.hpp"
 #include "forward/analysis/ensemble.hpp"
 #include "forward/io/gnuplot.hpp"
 #include "forward/io/run_files.hpp"
@@ -56,26 +66,105 @@ bool plot_ensemble(const fs::path& dir, const std::vector<SimulationResult>& mem
   return io::run_gnuplot(script, "ensemble.json and ensemble.csv", reason);
 }
 
+// Under mpirun: realisation 0 on this rank (its history is written here) while ranks
+// 1..K-1 run the others, each in a child process (batch/mpi_pool.hpp).
+void run_on_ranks(const Scene& nudged, const std::vector<int>& todo, const SimulateArgs& args,
+                  const std::function<void(int, SimulationResult, double)>& finished) {
+  const batch::MpiWorld world{args.mpi_rank, args.mpi_size};
+  std::vector<std::vector<double>> points;
+  for (const int k : todo)
+    if (k > 0) points.push_back({static_cast<double>(k)});
+  std::mutex mutex;
+  std::thread local;
+  if (!todo.empty() && todo.front() == 0)
+    local = std::thread([&] {
+      batch::set_worker_threads(std::max(1, args.threads));
+      SimulationResult r = simulate(nudged);
+      const double seconds = r.summary.profile.total;
+      std::lock_guard<std::mutex> lock(mutex);
+      finished(0, std::move(r), seconds);
+    });
+  batch::mpi_batch_runner(world)(points, [&](size_t i, SimulationResult r, double seconds) {
+    std::lock_guard<std::mutex> lock(mutex);
+    finished(static_cast<int>(points[i].front()), std::move(r), seconds);
+  });
+  batch::mpi_release_workers(world);
+  if (local.joinable()) local.join();
+}
+
 }  // namespace
 
 int run_ensemble_command(const SimulateArgs& args, const Scene& scene, const std::string& label) {
   const fs::path dir(args.out);
-  batch::EnsembleRuns runs = batch::ensemble_runs(args.ensemble, args.jobs, args.threads);
-  runs.on_member = [&](int k, const SimulationResult& r) {
-    if (args.quiet) return;
-    std::string line = fmt::format("realisation {:>3}: {}", k, io::status_name(r.summary.status));
-    if (!r.summary.points.empty()) {
-      const PointSummary& p = r.summary.points.front();
-      line += fmt::format(", {} max |u| {:.3f} m, max |v| {:.3f} m/s", p.name, p.max_total_displacement,
-                          p.peak_total_velocity);
-    }
-    std::cerr << line << fmt::format(" ({:.1f} s)\n", r.summary.profile.total);
-  };
   Scene nudged = scene;
   nudged.options.jitter_ratio = args.jitter;
-  const std::vector<SimulationResult> members = batch::run_ensemble(nudged, runs);
+  // Every realisation is cached in OUT/evaluations.sqlite as it ends, under the model
+  // revision, the scene as read (after --set) with the jitter, and its number: --resume
+  // runs only the realisations not there (a larger K after a smaller one, or an
+  // interrupted ensemble).
+  std::unique_ptr<inverse::EvaluationCache> cache;
+  const std::string cache_path = (dir / "evaluations.sqlite").string();
+  try {
+    cache = std::make_unique<inverse::EvaluationCache>(
+        cache_path, std::string(DDAFIT_VERSION) + "+" + kModelRevision,
+        inverse::text_hash({io::scene_to_yaml(nudged), fmt::format("jitter={:a}", args.jitter)}));
+  } catch (const inverse::CacheError& e) {
+    std::cerr << e.what() << "\n";
+    return kExitBadInput;
+  }
+  if (!args.resume && cache->count() > 0) {
+    std::cerr << cache_path << ": holds " << cache->count()
+              << " realisations of this scene from an earlier run; add --resume to reuse them, or remove the file "
+                 "to start over\n";
+    return kExitBadInput;
+  }
+  std::vector<SimulationResult> members(static_cast<size_t>(args.ensemble));
+  std::vector<int> todo;
+  const auto key = [](int k) { return "realisation=" + std::to_string(k); };
+  for (int k = 0; k < args.ensemble; ++k) {
+    // Realisation 0's history.csv and summary.json were written beside the cache when it ran.
+    const bool files = k > 0 || (fs::exists(dir / "history.csv") && fs::exists(dir / "summary.json"));
+    if (const auto hit = cache->find(key(k)); hit && files) members[k] = hit->result;
+    else todo.push_back(k);
+  }
+  if (!args.quiet && todo.size() < members.size())
+    std::cerr << fmt::format("{} of {} realisations from {}\n", members.size() - todo.size(), members.size(), cache_path);
+  std::string write_problem;
+  const auto finished = [&](int k, SimulationResult r, double seconds) {
+    if (k == 0 && r.summary.status != RunStatus::InvalidScene) {
+      try {  // as soon as it ends, so that an interrupted ensemble keeps them with the cache
+        io::write_history_csv((dir / "history.csv").string(), scene, r);
+        io::write_summary_json((dir / "summary.json").string(), label, r);
+      } catch (const std::exception& ex) {
+        write_problem = args.out + ": --out: " + ex.what();
+      }
+    }
+    if (r.summary.status != RunStatus::Interrupted) cache->store(key(k), r, seconds, false);
+    if (!args.quiet) {
+      std::string line = fmt::format("realisation {:>3}: {}", k, io::status_name(r.summary.status));
+      if (!r.summary.points.empty()) {
+        const PointSummary& p = r.summary.points.front();
+        line += fmt::format(", {} max |u| {:.3f} m, max |v| {:.3f} m/s", p.name, p.max_total_displacement,
+                            p.peak_total_velocity);
+      }
+      std::cerr << line << fmt::format(" ({:.1f} s)\n", seconds);
+    }
+    members[k] = std::move(r);
+  };
+  if (args.mpi_size > 1) {
+    run_on_ranks(nudged, todo, args, finished);
+  } else {
+    batch::EnsembleRuns runs = batch::ensemble_runs(args.ensemble, args.jobs, args.threads);
+    runs.realisations = todo;
+    runs.on_member = [&](int k, const SimulationResult& r) { finished(k, r, r.summary.profile.total); };
+    batch::run_ensemble(nudged, runs);
+  }
   if (members.front().summary.status == RunStatus::InvalidScene) {
     std::cerr << label << ": " << members.front().summary.message << "\n";
+    return kExitBadInput;
+  }
+  if (!write_problem.empty()) {
+    std::cerr << write_problem << "\n";
     return kExitBadInput;
   }
   std::vector<SimulationSummary> summaries;
@@ -83,8 +172,6 @@ int run_ensemble_command(const SimulateArgs& args, const Scene& scene, const std
   EnsembleSummary e = summarise_ensemble(summaries);
   e.jitter_ratio = args.jitter > 0.0 ? args.jitter : kJitterRatio;
   try {
-    io::write_history_csv((dir / "history.csv").string(), scene, members.front());
-    io::write_summary_json((dir / "summary.json").string(), label, members.front());
     io::write_ensemble_json((dir / "ensemble.json").string(), label, e);
     io::write_ensemble_csv((dir / "ensemble.csv").string(), members);
   } catch (const std::exception& ex) {

@@ -83,6 +83,13 @@ int main(int argc, char** argv) {
   simulate->add_option("--jobs", sim.jobs, "--ensemble: realisations at a time (jobs x threads <= cores)")
       ->capture_default_str()
       ->check(CLI::Range(1, 1024));
+  simulate->add_flag("--resume", sim.resume,
+                     "--ensemble: reuse the realisations cached in the output folder (evaluations.sqlite) and run "
+                     "only the others");
+  simulate->add_option("--run-timeout", sim.run_timeout,
+                       "s; --ensemble under mpirun: a realisation past this is killed, retried once")
+      ->capture_default_str()
+      ->check(within(1.0, 1e7));
 
   MeshArgs mesh;
   CLI::App* mesh_cmd = app.add_subcommand("mesh", "cut a scene's regions into blocks; writes scene.yaml, VTK, PNG");
@@ -279,11 +286,17 @@ int main(int argc, char** argv) {
   } mpi_guard;
   sc.mpi_rank = world.rank;
   sc.mpi_size = world.size;
-  if (world.size > 1 && !*scan) {
-    // Only `scan` divides its work between ranks; any other command would run K copies
-    // writing the same files. Rank 0 runs it alone.
+  const bool ensemble = *simulate && sim.ensemble > 0;
+  if (ensemble) {
+    sim.mpi_rank = world.rank;
+    sim.mpi_size = world.size;
+  }
+  if (world.size > 1 && !*scan && !ensemble) {
+    // Only `scan` and `simulate --ensemble` divide their work between ranks; any other
+    // command would run K copies writing the same files. Rank 0 runs it alone.
     if (world.rank > 0) return kExitSuccess;
-    std::cerr << "note: only `ddafit scan` uses MPI ranks; rank 0 runs this command alone\n";
+    std::cerr << "note: only `ddafit scan` and `ddafit simulate --ensemble` use MPI ranks; rank 0 runs this "
+                 "command alone\n";
   }
   // Each command reports its own errors in one line; this is the net under them, so that
   // an error nobody foresaw still ends as a message and exit 2, never as an abort.

@@ -3,9 +3,11 @@
 #include <chrono>
 #include <filesystem>
 #include <iostream>
+#include <thread>
 
 #include "apps/ddafit/commands.hpp"
 #include "apps/ddafit/exit_codes.hpp"
+#include "batch/mpi_pool.hpp"
 #include "batch/stop_signals.hpp"
 #include "apps/ddafit/clock_text.hpp"
 #include "forward/io/run_files.hpp"
@@ -64,6 +66,16 @@ int run_simulate(const SimulateArgs& args) {
     }
   } else {
     if (!load_scene(args.scene, args.sets, scene)) return kExitBadInput;
+  }
+  if (args.ensemble > 0 && args.mpi_rank > 0) {
+    // A worker rank of `mpirun ... simulate --ensemble`: realisations for rank 0 until it
+    // says stop; it writes and prints nothing.
+    Scene nudged = scene;
+    nudged.options.jitter_ratio = args.jitter;
+    const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+    batch::mpi_ensemble_worker(nudged, args.threads > 0 ? args.threads : std::max(1, cores / args.mpi_size),
+                               args.run_timeout);
+    return kExitSuccess;
   }
   if (const std::string problem = io::prepare_output_folder(args.out); !problem.empty()) {
     std::cerr << problem << "\n";
