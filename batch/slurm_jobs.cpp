@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <chrono>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -11,6 +12,7 @@
 #include "forward/io/run_files.hpp"
 #include "forward/io/run_json.hpp"
 #include "inverse/forward_call.hpp"
+#include "inverse/model_spread.hpp"
 
 namespace ddafit::batch {
 namespace {
@@ -77,13 +79,19 @@ SlurmTask run_slurm_task(const std::string& dir, long index, const inverse::Stud
     return task;
   }
   const std::vector<double>& values = points[static_cast<size_t>(index)];
-  if (values.size() != study.parameters.size()) {
+  const size_t n = study.parameters.size();
+  // n values: a point of the design; n + 1: a realisation (the last value) of the model
+  // spread at the start point (inverse/model_spread.hpp).
+  const bool realisation = values.size() == n + 1 && values[n] >= 1.0 && values[n] == std::floor(values[n]);
+  if (values.size() != n && !realisation) {
     task.problem = fmt::format("{}: line {}: {} values for the study's {} parameters", points_file, index + 1,
-                               values.size(), study.parameters.size());
+                               values.size(), n);
     return task;
   }
   const auto t0 = std::chrono::steady_clock::now();
-  task.run = inverse::StudyScene(study).run(values, inverse::run_forward);
+  task.run = realisation ? inverse::StudyScene(study).run({values.begin(), values.end() - 1}, inverse::run_forward,
+                                                          static_cast<int>(values[n]))
+                         : inverse::StudyScene(study).run(values, inverse::run_forward);
   task.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   nlohmann::json j;
   j["values"] = values;
@@ -110,7 +118,7 @@ Collected collect_slurm_results(const std::string& dir, const inverse::Study& st
       const nlohmann::json j = nlohmann::json::parse(in);
       double seconds = 0.0;
       const SimulationResult run = io::decode_run(j["run"].get<std::string>(), &seconds);
-      cache.store(inverse::point_key(study, j["values"].get<std::vector<double>>()), run, seconds, false);
+      cache.store(inverse::model_spread_key(study, j["values"].get<std::vector<double>>()), run, seconds, false);
       ++c.loaded;
     } catch (const std::exception& e) {
       c.skipped.push_back(file.string() + ": not a result of ddafit scan --task (" + e.what() + "); skipped");

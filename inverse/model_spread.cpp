@@ -17,16 +17,42 @@ std::string realisation_key(const Study& study, const std::vector<double>& x, in
   return point_key(study, x) + (k > 0 ? ";realisation=" + std::to_string(k) : "");
 }
 
+bool wants_spread(const Study& study) {
+  return std::any_of(study.observations.begin(), study.observations.end(),
+                     [](const Observation& o) { return o.model_sigma_from_ensemble; });
+}
+
+std::vector<double> spread_start(const Study& study) {
+  std::vector<double> at;
+  for (const Parameter& p : study.parameters) at.push_back(p.discrete() ? p.first_model_level() : p.start);
+  return at;
+}
+
 }  // namespace
+
+std::vector<std::vector<double>> model_spread_points(const Study& study) {
+  std::vector<std::vector<double>> points;
+  if (!wants_spread(study)) return points;
+  const std::vector<double> at = spread_start(study);
+  for (int k = 0; k < study.ensemble; ++k) {
+    points.push_back(at);
+    if (k > 0) points.back().push_back(static_cast<double>(k));
+  }
+  return points;
+}
+
+std::string model_spread_key(const Study& study, const std::vector<double>& point) {
+  const size_t n = study.parameters.size();
+  if (point.size() <= n) return point_key(study, point);
+  return realisation_key(study, {point.begin(), point.begin() + static_cast<long>(n)}, static_cast<int>(point[n]));
+}
 
 ModelSpread measure_model_spread(const Study& study, const ModelSpreadRuns& options, EvaluationCache& cache,
                                  const ForwardModel& forward) {
   ModelSpread out;
   out.study = study;
-  const bool wanted = std::any_of(study.observations.begin(), study.observations.end(),
-                                  [](const Observation& o) { return o.model_sigma_from_ensemble; });
-  if (!wanted) return out;
-  for (const Parameter& p : study.parameters) out.at.push_back(p.discrete() ? p.first_model_level() : p.start);
+  if (!wants_spread(study)) return out;
+  out.at = spread_start(study);
   const int members = study.ensemble;
   std::vector<SimulationSummary> summaries(static_cast<size_t>(members));
   std::vector<int> todo;

@@ -36,6 +36,14 @@ struct ModelSpreadRuns {
 // with ";realisation=K" appended (realisation 0 is the start point's own run), so a
 // resumed study measures nothing twice. A study with no `model_sigma: ensemble` comes back
 // unchanged, with nothing run.
+// The points that measure the study's model spread, one per realisation, in order:
+// realisation 0 is the start point itself, realisation k >= 1 the start point with k
+// appended as one more value (as MPI ranks and SLURM tasks receive them). Empty when no
+// observation asks for `model_sigma: ensemble`.
+std::vector<std::vector<double>> model_spread_points(const Study& study);
+// The cache key of such a point: the start point's key, with ";realisation=K" for k >= 1.
+std::string model_spread_key(const Study& study, const std::vector<double>& point);
+
 ModelSpread measure_model_spread(const Study& study, const ModelSpreadRuns& runs, EvaluationCache& cache,
                                  const ForwardModel& forward);
 

@@ -15,6 +15,7 @@
 #include "apps/ddafit/exit_codes.hpp"
 #include "batch/stop_signals.hpp"
 #include "batch/mpi_pool.hpp"
+#include "inverse/model_spread.hpp"
 #include "apps/ddafit/clock_text.hpp"
 #include "forward/io/html_report.hpp"
 #include "forward/io/run_files.hpp"
@@ -224,8 +225,12 @@ int run_scan(const ScanArgs& args) {
       if (fs::exists(cache_path))
         cache = std::make_unique<inverse::EvaluationCache>(cache_path.string(), options.model_version,
                                                            inverse::scene_input_hash(study));
-      for (const auto& x : points) {
-        const std::string key = inverse::point_key(study, x);
+      // The model spread's realisations (model_sigma: ensemble) first: the collecting run
+      // measures it before the design, from the cache.
+      std::vector<std::vector<double>> all = inverse::model_spread_points(study);
+      all.insert(all.end(), points.begin(), points.end());
+      for (const auto& x : all) {
+        const std::string key = inverse::model_spread_key(study, x);
         if (keys.insert(key).second && !(cache && cache->find(key))) todo.push_back(x);
       }
     }

@@ -11,7 +11,7 @@ case $action in
 start)
   mkdir -p "$dir"/{state,spool,log}
   install -d -o munge -g munge -m 0755 /run/munge
-  if ! pgrep -x munged > /dev/null; then
+  if ! pgrep -x munged > /dev/null || [ ! -S /run/munge/munge.socket.2 ]; then
     runuser -u munge -- /usr/sbin/munged --force
     touch "$dir/munged.started"  # ours to stop
   fi
@@ -56,11 +56,17 @@ CONF
   exit 1
   ;;
 stop)
+  # Each daemon is waited for (up to 10 s): a munged still exiting when the next test's
+  # start looks for one is taken as running, and its socket then vanishes under that test.
+  pids=()
   for daemon in slurmd slurmctld; do
-    if [ -f "$dir/$daemon.daemon" ]; then kill "$(cat "$dir/$daemon.daemon")" 2>/dev/null || true; fi
+    if [ -f "$dir/$daemon.daemon" ]; then pids+=("$(cat "$dir/$daemon.daemon")"); fi
   done
-  if [ -f "$dir/munged.started" ] && [ -f /run/munge/munged.pid ]; then kill "$(cat /run/munge/munged.pid)" 2>/dev/null || true; fi
-  sleep 1
+  if [ -f "$dir/munged.started" ] && [ -f /run/munge/munged.pid ]; then pids+=("$(cat /run/munge/munged.pid)"); fi
+  for pid in "${pids[@]}"; do kill "$pid" 2>/dev/null || true; done
+  for pid in "${pids[@]}"; do
+    for _ in $(seq 1 100); do kill -0 "$pid" 2>/dev/null || break; sleep 0.1; done
+  done
   ;;
 *) echo "cluster.sh: start or stop" >&2; exit 2 ;;
 esac
