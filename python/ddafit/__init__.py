@@ -12,7 +12,14 @@ prints. Ctrl-C stops a run and raises ddafit.Interrupted, whose .result keeps wh
 """
 import os as _os
 
-from . import _core
+# Threads that wait must not spin on a shared machine: the command line bounds libgomp's
+# spinning by re-executing itself with GOMP_SPINCOUNT set (batch/thread_budget.cpp); a
+# Python process cannot, but libgomp reads the variable when it is loaded, which is when
+# _core is imported below (unless something imported before ddafit loaded libgomp).
+if "OMP_WAIT_POLICY" not in _os.environ and "GOMP_SPINCOUNT" not in _os.environ:
+    _os.environ["GOMP_SPINCOUNT"] = "10000"
+
+from . import _core  # noqa: E402
 from ._core import Result, Scene, model_revision, version
 
 __all__ = ["Scene", "Result", "Interrupted", "load_scene", "mesh", "simulate", "stable", "invert",

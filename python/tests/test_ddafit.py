@@ -93,6 +93,26 @@ def test_a_run_lets_other_python_threads_work():
     assert len(ticks) - start > 0.25 * wall / 0.001
 
 
+def test_importing_ddafit_bounds_thread_spinning_before_libgomp_loads():
+    # libgomp reads GOMP_SPINCOUNT once, when it is loaded: the module must set it first,
+    # or waiting threads spin for libgomp's default and two runs on a shared machine slow
+    # each other several times over (issue "Model no more than a scene needs").
+    probe = (
+        "import os\n"
+        "def gomp(): return 'libgomp' in open('/proc/self/maps').read()\n"
+        "before = gomp()\n"
+        "import ddafit\n"
+        "print(before, gomp(), os.environ.get('GOMP_SPINCOUNT'))\n"
+    )
+    env = {k: v for k, v in os.environ.items() if k not in ("GOMP_SPINCOUNT", "OMP_WAIT_POLICY")}
+    out = subprocess.run(["/usr/bin/python3", "-c", probe], env=env, capture_output=True, text=True, check=True)
+    assert out.stdout.split() == ["False", "True", "10000"], out.stdout + out.stderr
+    # A policy the user set is theirs: nothing is added.
+    env["OMP_WAIT_POLICY"] = "active"
+    out = subprocess.run(["/usr/bin/python3", "-c", probe], env=env, capture_output=True, text=True, check=True)
+    assert out.stdout.split()[2] == "None", out.stdout
+
+
 def test_stable_brackets_the_inclines_angle():
     # A block on a 2:1 slope stays put once tan(phi) >= 0.5: phi = 26.57 deg.
     report = ddafit.stable(incline_no_degradation(), "interface", low=20, high=35, tolerance=0.5, trial=2.0)
