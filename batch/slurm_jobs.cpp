@@ -15,8 +15,6 @@
 #include "inverse/model_spread.hpp"
 
 namespace ddafit::batch {
-namespace {
-
 namespace fs = std::filesystem;
 
 std::string this_executable() {
@@ -25,7 +23,14 @@ std::string this_executable() {
   return ec ? std::string("ddafit") : self.string();
 }
 
-}  // namespace
+std::string shell_quote(const std::string& word) {
+  if (!word.empty() && word.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_-+=.,/:@%") ==
+                           std::string::npos)
+    return word;
+  std::string out = "'";
+  for (const char c : word) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return out + "'";
+}
 
 std::vector<std::vector<double>> read_slurm_points(const std::string& dir) {
   std::vector<std::vector<double>> points;
@@ -51,19 +56,18 @@ std::string write_slurm_job(const SlurmJob& job, const std::vector<std::vector<d
       points << "\n";
     }
   }
-  const std::string command = this_executable() + " scan " + fs::absolute(job.study_path).string() + " --task " +
-                              dir.string() + " --task-index $SLURM_ARRAY_TASK_ID --threads " +
-                              std::to_string(job.threads);
+  const std::string command = job.command + " --task " + shell_quote(dir.string()) +
+                              " --task-index $SLURM_ARRAY_TASK_ID --threads " + std::to_string(job.threads);
   {
     std::ofstream script(dir / "job.sh");
     script << "#!/bin/bash\n"
-           << "#SBATCH --job-name=ddafit-scan\n"
+           << "#SBATCH --job-name=ddafit\n"
            << fmt::format("#SBATCH --array=0-{}%{}\n", todo.size() - 1, job.array_limit)
            << "#SBATCH --cpus-per-task=" << job.threads << "\n"
            << "#SBATCH --output=" << (dir / "logs" / "task_%a.out").string() << "\n"
-           << "# Written by ddafit scan --slurm: one task per point still to run (points.txt).\n"
+           << "# Written by ddafit --slurm: one task per point still to run (points.txt).\n"
            << "# Submit: sbatch " << (dir / "job.sh").string() << "\n"
-           << "# Then:   ddafit scan STUDY (same design options) --collect " << dir.string() << " --out OUT\n"
+           << "# Then:   " << job.collect << "\n"
            << "srun --ntasks=1 " << command << "\n";
   }
   fs::permissions(dir / "job.sh", fs::perms::owner_exec, fs::perm_options::add);

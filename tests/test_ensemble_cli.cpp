@@ -58,6 +58,12 @@ TEST(EnsembleCli, AResumedEnsembleRunsOnlyTheRealisationsItLacksAndGivesTheFresh
   ASSERT_TRUE(std::regex_search(csv, m0, std::regex("\n0,completed,target,([^,]+)")));
   ASSERT_TRUE(std::regex_search(csv, m1, std::regex("\n1,completed,target,([^,]+)")));
   EXPECT_NE(m0[1].str(), m1[1].str());
+  // All of them cached: nothing runs.
+  const CommandResult cached = ddafit(base + "5 --resume --out " + (root / "grown").string(), "ensemble_cache/f");
+  ASSERT_EQ(cached.code, 0) << cached.err;
+  EXPECT_NE(cached.err.find("5 of 5 realisations from"), std::string::npos) << cached.err;
+  EXPECT_EQ(cached.err.find("realisation   "), std::string::npos) << "a cached realisation ran again:\n" << cached.err;
+  EXPECT_EQ(members(root / "grown"), members(root / "fresh"));
   // A changed scene is a different key: nothing is reused, and nothing is refused.
   const CommandResult changed =
       ddafit(base + "2 --set time.duration=0.4 --out " + (root / "grown").string(), "ensemble_cache/e");
@@ -126,6 +132,35 @@ TEST(EnsembleCli, AScanMeasuresTheSameModelSpreadOnMpiRanksAsOnThreads) {
                           [](const std::string& l) { return l.find("on a worker rank") != std::string::npos; }),
             4)
       << log;
+}
+
+}  // namespace
+
+namespace {
+
+TEST(EnsembleCli, JobArrayFlagsWithoutAnEnsembleOrWithABadTaskAreRefusedInOneLine) {
+  const fs::path root = fs::path(DDAFIT_TEST_TMP) / "ensemble_job_refusals";
+  fs::remove_all(root);
+  const CommandResult plain = ddafit("simulate " + kCollision + " --slurm " + (root / "job").string(), "ensemble_job_refusals/a");
+  EXPECT_EQ(plain.code, 2);
+  EXPECT_NE(plain.err.find("belong to --ensemble K"), std::string::npos) << plain.err;
+  // A job folder for 3 realisations; a task index past its end, and a folder of another K.
+  ASSERT_EQ(ddafit("simulate " + kCollision + " --ensemble 3 --slurm " + (root / "job").string() + " --out " +
+                       (root / "out").string(),
+                   "ensemble_job_refusals/b")
+                .code,
+            0);
+  const CommandResult past = ddafit("simulate " + kCollision + " --ensemble 3 --task " + (root / "job").string() +
+                                        " --task-index 3",
+                                    "ensemble_job_refusals/c");
+  EXPECT_EQ(past.code, 2);
+  EXPECT_NE(past.err.find("points.txt: --task-index 3: no such realisation (it has 3)"), std::string::npos) << past.err;
+  const CommandResult other = ddafit("simulate " + kCollision + " --ensemble 2 --task " + (root / "job").string() +
+                                         " --task-index 2",
+                                     "ensemble_job_refusals/d");
+  EXPECT_EQ(other.code, 2);
+  EXPECT_NE(other.err.find("line 3: not a realisation of this --ensemble 2"), std::string::npos) << other.err;
+  EXPECT_FALSE(fs::exists(root / "job" / "results" / "2.json"));
 }
 
 }  // namespace

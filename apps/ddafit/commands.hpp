@@ -39,6 +39,11 @@ struct SimulateArgs {
   double run_timeout = 3600.0;  // s; --ensemble under mpirun: a run past this is killed (and retried once)
   int threads = 0;            // the command's --threads (0 = the core count)
   int mpi_rank = 0, mpi_size = 1;  // --ensemble under mpirun: this process's rank and the world's size
+  std::string slurm_dir;    // --ensemble --slurm: write a job array here instead of running
+  int array_limit = 4;      // --slurm: tasks at a time
+  std::string collect_dir;  // --ensemble --collect: load a job array's results into the cache, then write
+  std::string task_dir;     // --task (set by job.sh): run one realisation of DIR/points.txt
+  long task_index = -1;     // --task-index
 };
 int run_simulate(const SimulateArgs& args);
 // simulate --ensemble: the scene is loaded and the output folder ready (ensemble_command.cpp).

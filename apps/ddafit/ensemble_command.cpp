@@ -13,6 +13,7 @@
 #include <thread>
 
 #include "apps/ddafit/commands.hpp"
+#include "apps/ddafit/ensemble_slurm.hpp"
 #include "apps/ddafit/exit_codes.hpp"
 #include "batch/ensemble_runs.hpp"
 #include "batch/mpi_pool.hpp"
@@ -112,7 +113,14 @@ int run_ensemble_command(const SimulateArgs& args, const Scene& scene, const std
     std::cerr << e.what() << "\n";
     return kExitBadInput;
   }
-  if (!args.resume && cache->count() > 0) {
+  bool resume = args.resume;
+  if (!args.collect_dir.empty()) {
+    const long missing = collect_ensemble_results(args, *cache);
+    if (missing < 0) return kExitBadInput;
+    if (missing > 0) return kExitRunFailed;
+    resume = true;  // every realisation is now in the cache: the ensemble comes from it
+  }
+  if (!resume && cache->count() > 0) {
     std::cerr << cache_path << ": holds " << cache->count()
               << " realisations of this scene from an earlier run; add --resume to reuse them, or remove the file "
                  "to start over\n";
@@ -120,13 +128,13 @@ int run_ensemble_command(const SimulateArgs& args, const Scene& scene, const std
   }
   std::vector<SimulationResult> members(static_cast<size_t>(args.ensemble));
   std::vector<int> todo;
-  const auto key = [](int k) { return "realisation=" + std::to_string(k); };
   for (int k = 0; k < args.ensemble; ++k) {
     // Realisation 0's history.csv and summary.json were written beside the cache when it ran.
     const bool files = k > 0 || (fs::exists(dir / "history.csv") && fs::exists(dir / "summary.json"));
-    if (const auto hit = cache->find(key(k)); hit && files) members[k] = hit->result;
+    if (const auto hit = cache->find(realisation_key(k)); hit && files) members[k] = hit->result;
     else todo.push_back(k);
   }
+  if (!args.slurm_dir.empty()) return write_ensemble_job(args, todo);
   if (!args.quiet && todo.size() < members.size())
     std::cerr << fmt::format("{} of {} realisations from {}\n", members.size() - todo.size(), members.size(), cache_path);
   std::string write_problem;
@@ -139,7 +147,7 @@ int run_ensemble_command(const SimulateArgs& args, const Scene& scene, const std
         write_problem = args.out + ": --out: " + ex.what();
       }
     }
-    if (r.summary.status != RunStatus::Interrupted) cache->store(key(k), r, seconds, false);
+    if (r.summary.status != RunStatus::Interrupted) cache->store(realisation_key(k), r, seconds, false);
     if (!args.quiet) {
       std::string line = fmt::format("realisation {:>3}: {}", k, io::status_name(r.summary.status));
       if (!r.summary.points.empty()) {
@@ -153,7 +161,7 @@ int run_ensemble_command(const SimulateArgs& args, const Scene& scene, const std
   };
   if (args.mpi_size > 1) {
     run_on_ranks(nudged, todo, args, finished);
-  } else {
+  } else if (!todo.empty()) {
     batch::EnsembleRuns runs = batch::ensemble_runs(args.ensemble, args.jobs, args.threads);
     runs.realisations = todo;
     runs.on_member = [&](int k, const SimulationResult& r) { finished(k, r, r.summary.profile.total); };

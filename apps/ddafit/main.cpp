@@ -86,6 +86,16 @@ int main(int argc, char** argv) {
   simulate->add_flag("--resume", sim.resume,
                      "--ensemble: reuse the realisations cached in the output folder (evaluations.sqlite) and run "
                      "only the others");
+  simulate->add_option("--slurm", sim.slurm_dir,
+                       "--ensemble: write a SLURM job array for the realisations not yet cached into this folder");
+  simulate->add_option("--array-limit", sim.array_limit, "--slurm: array tasks at a time")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 100000));
+  simulate->add_option("--collect", sim.collect_dir,
+                       "--ensemble: load a --slurm folder's results into the cache, then write the ensemble");
+  simulate->add_option("--task", sim.task_dir, "(used by --slurm's job.sh) run one realisation of this folder")
+      ->group("");
+  simulate->add_option("--task-index", sim.task_index, "(used by job.sh) the line of points.txt")->group("");
   simulate->add_option("--run-timeout", sim.run_timeout,
                        "s; --ensemble under mpirun: a realisation past this is killed, retried once")
       ->capture_default_str()

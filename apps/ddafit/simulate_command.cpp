@@ -6,6 +6,7 @@
 #include <thread>
 
 #include "apps/ddafit/commands.hpp"
+#include "apps/ddafit/ensemble_slurm.hpp"
 #include "apps/ddafit/exit_codes.hpp"
 #include "batch/mpi_pool.hpp"
 #include "batch/stop_signals.hpp"
@@ -66,6 +67,16 @@ int run_simulate(const SimulateArgs& args) {
     }
   } else {
     if (!load_scene(args.scene, args.sets, scene)) return kExitBadInput;
+  }
+  if ((!args.slurm_dir.empty() || !args.collect_dir.empty() || !args.task_dir.empty()) && args.ensemble <= 0) {
+    std::cerr << "ddafit simulate: --slurm, --collect and --task belong to --ensemble K\n";
+    return kExitBadInput;
+  }
+  if (args.ensemble > 0 && !args.task_dir.empty()) {
+    // One task of a --slurm job array: writes into the job folder only.
+    Scene nudged = scene;
+    nudged.options.jitter_ratio = args.jitter;
+    return run_ensemble_task(args, scene, nudged, label);
   }
   if (args.ensemble > 0 && args.mpi_rank > 0) {
     // A worker rank of `mpirun ... simulate --ensemble`: realisations for rank 0 until it

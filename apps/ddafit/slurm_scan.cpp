@@ -26,7 +26,13 @@ int write_slurm_job(const ScanArgs& args, const inverse::Study& study, const std
     std::cout << "every point of the design is in the cache already: nothing to submit\n";
     return kExitSuccess;
   }
-  batch::SlurmJob job{dir, study.path, args.threads > 0 ? args.threads : 1, args.array_limit};
+  batch::SlurmJob job;
+  job.dir = dir;
+  job.command = batch::shell_quote(batch::this_executable()) + " scan " +
+                batch::shell_quote(fs::absolute(study.path).string());
+  job.collect = "ddafit scan STUDY (same design options) --collect " + dir + " --out OUT";
+  job.threads = args.threads > 0 ? args.threads : 1;
+  job.array_limit = args.array_limit;
   if (const std::string problem = batch::write_slurm_job(job, todo); !problem.empty()) {
     std::cerr << problem << "\n";
     return kExitBadInput;
