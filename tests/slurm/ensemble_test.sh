@@ -8,12 +8,7 @@ set -euo pipefail
 ddafit=${1:?ddafit binary}
 scene=${2:?scene}
 work=${3:?work folder}
-here=$(cd "$(dirname "$0")" && pwd)
-rm -rf "$work"
-mkdir -p "$work"
-export SLURM_CONF="$work/cluster/slurm.conf"
-trap 'bash "$here/cluster.sh" stop "$work/cluster"' EXIT
-bash "$here/cluster.sh" start "$work/cluster"
+source "$(dirname "$0")/start_cluster.sh"
 
 # A --set with a space and braces: job.sh must hand it to every task as one argument.
 run=(simulate "$scene" --ensemble 5 --set "time.duration=0.45" --set "output={interval: 0.01}")

@@ -7,12 +7,7 @@ set -euo pipefail
 ddafit=${1:?ddafit binary}
 study=${2:?study}
 work=${3:?work folder}
-here=$(cd "$(dirname "$0")" && pwd)
-rm -rf "$work"
-mkdir -p "$work"
-export SLURM_CONF="$work/cluster/slurm.conf"
-trap 'bash "$here/cluster.sh" stop "$work/cluster"' EXIT
-bash "$here/cluster.sh" start "$work/cluster"
+source "$(dirname "$0")/start_cluster.sh"
 
 design=(--design lhs --samples 4 --seed 11)
 "$ddafit" scan "$study" "${design[@]}" --out "$work/local" > "$work/local.log" 2>&1

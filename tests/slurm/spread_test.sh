@@ -9,12 +9,7 @@ set -euo pipefail
 ddafit=${1:?ddafit binary}
 twin=${2:?twin study}
 work=${3:?work folder}
-here=$(cd "$(dirname "$0")" && pwd)
-rm -rf "$work"
-mkdir -p "$work"
-export SLURM_CONF="$work/cluster/slurm.conf"
-trap 'bash "$here/cluster.sh" stop "$work/cluster"' EXIT
-bash "$here/cluster.sh" start "$work/cluster"
+source "$(dirname "$0")/start_cluster.sh"
 
 # The twin study with its first observation's model sigma measured by 4 realisations.
 study="$work/study.yaml"
