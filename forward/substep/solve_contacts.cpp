@@ -70,12 +70,6 @@ namespace {
 // A manifold's passes stop when no impulse of a pass changed by more than this share of
 // its largest normal impulse (control.contact_passes).
 constexpr double kManifoldPassTolerance = 1e-3;
-// A manifold whose first pass changed no impulse by more than this share of its largest
-// normal impulse stops there. On the 96 slope drops of SlopeLanding the results are the
-// same as with no such rule up to a share of 0.2 and 4 drops fail at 0.3; 0.1 keeps a
-// margin of 2. It halves the second passes on Vajont section I (mean passes per manifold
-// and sweep 2.3 -> 1.6).
-constexpr double kImpactShare = 0.1;
 
 // One pass over a manifold's points: the normal impulses with the push-out (or none in the
 // relax sweep), then friction under the Mohr-Coulomb cap. Returns the largest change of an
@@ -128,17 +122,12 @@ double manifold_pass(ContactManifold& m, char& deep, const SweepSettings& settin
 // both points; one pass leaves that coupling unconverged where an impact's friction should
 // nearly stop the slip (a landing near the friction angle). Local passes are Gauss-Seidel
 // on this manifold alone: the fixed point is the sweep's own, reached in fewer sweeps.
-// Only a manifold whose first pass moved an impulse by more than kImpactShare of its
-// largest normal impulse takes more: an impact, or a load that changed within the
-// substep. In a steady flow the first pass's change is a few per cent, and the next
-// sweep carries what is left (revision 2026-11-26.2; docs/performance.md).
 void solve_manifold(ContactManifold& m, char& deep, const SweepSettings& settings, double inv_h, SweepState& st) {
   for (int pass = 0; pass < settings.manifold_passes; ++pass) {
     const double change = manifold_pass(m, deep, settings, inv_h, st);
     double scale = 0.0;
     for (int q = 0; q < m.point_count; ++q) scale = std::max(scale, std::abs(m.points[q].impulse.normal));
     if (change <= kManifoldPassTolerance * scale) break;
-    if (pass == 0 && change <= kImpactShare * scale) break;
   }
 }
 
