@@ -15,6 +15,7 @@
 #include "batch/thread_budget.hpp"
 #include "forward/simulation.hpp"
 #include "inverse/forward_call.hpp"
+#include "inverse/model_spread.hpp"
 
 namespace ddafit::batch {
 namespace {
@@ -180,13 +181,13 @@ void serve(const std::function<SimulationResult(const std::vector<double>&)>& ru
 
 void mpi_worker(const inverse::Study& study, int threads, double timeout) {
   const inverse::StudyScene scene(study);  // read once per worker; each child copies it
-  const size_t n = study.parameters.size();
   serve(
-      [&](const std::vector<double>& values) {
-        // One value more than the study has parameters: a realisation of the model spread.
-        if (values.size() == n + 1)
-          return scene.run({values.begin(), values.end() - 1}, inverse::run_forward, static_cast<int>(values.back()));
-        return scene.run(values, inverse::run_forward);
+      [&](const std::vector<double>& point) {
+        // A point with one value more is a realisation of the model spread (model_spread.hpp).
+        std::vector<double> values;
+        int realisation = 0;
+        inverse::split_spread_point(study, point, values, realisation);
+        return scene.run(values, inverse::run_forward, realisation);
       },
       threads, timeout);
 }

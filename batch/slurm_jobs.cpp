@@ -3,7 +3,6 @@
 #include <fmt/format.h>
 
 #include <chrono>
-#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -83,19 +82,17 @@ SlurmTask run_slurm_task(const std::string& dir, long index, const inverse::Stud
     return task;
   }
   const std::vector<double>& values = points[static_cast<size_t>(index)];
-  const size_t n = study.parameters.size();
-  // n values: a point of the design; n + 1: a realisation (the last value) of the model
-  // spread at the start point (inverse/model_spread.hpp).
-  const bool realisation = values.size() == n + 1 && values[n] >= 1.0 && values[n] == std::floor(values[n]);
-  if (values.size() != n && !realisation) {
+  // n values: a point of the design; n + 1: a realisation of the model spread at the start
+  // point (inverse/model_spread.hpp).
+  std::vector<double> parameters;
+  int realisation = 0;
+  if (!inverse::split_spread_point(study, values, parameters, realisation)) {
     task.problem = fmt::format("{}: line {}: {} values for the study's {} parameters", points_file, index + 1,
-                               values.size(), n);
+                               values.size(), study.parameters.size());
     return task;
   }
   const auto t0 = std::chrono::steady_clock::now();
-  task.run = realisation ? inverse::StudyScene(study).run({values.begin(), values.end() - 1}, inverse::run_forward,
-                                                          static_cast<int>(values[n]))
-                         : inverse::StudyScene(study).run(values, inverse::run_forward);
+  task.run = inverse::StudyScene(study).run(parameters, inverse::run_forward, realisation);
   task.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   nlohmann::json j;
   j["values"] = values;

@@ -41,10 +41,22 @@ std::vector<std::vector<double>> model_spread_points(const Study& study) {
   return points;
 }
 
-std::string model_spread_key(const Study& study, const std::vector<double>& point) {
+bool split_spread_point(const Study& study, const std::vector<double>& point, std::vector<double>& values,
+                        int& realisation) {
   const size_t n = study.parameters.size();
-  if (point.size() <= n) return point_key(study, point);
-  return realisation_key(study, {point.begin(), point.begin() + static_cast<long>(n)}, static_cast<int>(point[n]));
+  values.assign(point.begin(), point.begin() + static_cast<long>(std::min(n, point.size())));
+  realisation = 0;
+  if (point.size() == n) return true;
+  if (point.size() != n + 1 || point[n] < 1.0 || point[n] != std::floor(point[n])) return false;
+  realisation = static_cast<int>(point[n]);
+  return true;
+}
+
+std::string model_spread_key(const Study& study, const std::vector<double>& point) {
+  std::vector<double> values;
+  int k = 0;
+  split_spread_point(study, point, values, k);
+  return realisation_key(study, values, k);
 }
 
 ModelSpread measure_model_spread(const Study& study, const ModelSpreadRuns& options, EvaluationCache& cache,

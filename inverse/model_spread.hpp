@@ -44,6 +44,12 @@ std::vector<std::vector<double>> model_spread_points(const Study& study);
 // The cache key of such a point: the start point's key, with ";realisation=K" for k >= 1.
 std::string model_spread_key(const Study& study, const std::vector<double>& point);
 
+// A point as MPI ranks and SLURM tasks receive it, split: the parameter values, and the
+// realisation (0 for a point of the study's own size; k >= 1 from one value more). False
+// when the point has neither size or its last value is not a whole k >= 1.
+bool split_spread_point(const Study& study, const std::vector<double>& point, std::vector<double>& values,
+                        int& realisation);
+
 ModelSpread measure_model_spread(const Study& study, const ModelSpreadRuns& runs, EvaluationCache& cache,
                                  const ForwardModel& forward);
 
