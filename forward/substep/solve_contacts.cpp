@@ -131,9 +131,11 @@ void solve_manifold(ContactManifold& m, char& deep, const SweepSettings& setting
   }
 }
 
-// The manifolds flagged deep and every other manifold of their moving blocks, in order.
-std::vector<int> deep_neighbourhood(const std::vector<ContactManifold>& manifolds, const SweepState& st) {
-  std::vector<char> involved(st.velocity.size(), 0);
+// The manifolds flagged deep and every other manifold of their moving blocks, in order;
+// `involved` flags those blocks.
+std::vector<int> deep_neighbourhood(const std::vector<ContactManifold>& manifolds, const SweepState& st,
+                                    std::vector<char>& involved) {
+  involved.assign(st.velocity.size(), 0);
   bool any = false;
   for (int k = 0; k < static_cast<int>(st.deep.size()); ++k)
     if (st.deep[k]) involved[manifolds[k].block_a] = involved[manifolds[k].block_b] = 1, any = true;
@@ -147,6 +149,19 @@ std::vector<int> deep_neighbourhood(const std::vector<ContactManifold>& manifold
   return list;
 }
 
+// Each block's manifolds (compressed rows: manifolds of block b are ids[first[b] .. first[b + 1])).
+struct BlockManifolds {
+  std::vector<int> first, ids;
+  BlockManifolds(const std::vector<ContactManifold>& manifolds, size_t blocks) : first(blocks + 1, 0) {
+    for (const ContactManifold& m : manifolds) ++first[m.block_a + 1], ++first[m.block_b + 1];
+    for (size_t b = 0; b < blocks; ++b) first[b + 1] += first[b];
+    ids.resize(first[blocks]);
+    std::vector<int> next(first.begin(), first.end() - 1);
+    for (int k = 0; k < static_cast<int>(manifolds.size()); ++k)
+      ids[next[manifolds[k].block_a]++] = k, ids[next[manifolds[k].block_b]++] = k;
+  }
+};
+
 }  // namespace
 
 void solve_contacts(std::vector<ContactManifold>& manifolds, const std::vector<std::vector<int>>& colours,
@@ -157,7 +172,8 @@ void solve_contacts(std::vector<ContactManifold>& manifolds, const std::vector<s
 
 void converge_deep(std::vector<ContactManifold>& manifolds, const SweepSettings& relax, int iterations,
                    SweepState& st) {
-  const std::vector<int> list = deep_neighbourhood(manifolds, st);
+  std::vector<char> involved;
+  const std::vector<int> list = deep_neighbourhood(manifolds, st, involved);
   if (list.empty()) return;
   const double inv_h = 1.0 / relax.h;
   char ignored = 0;
@@ -169,10 +185,25 @@ void correct_positions(const std::vector<ContactManifold>& manifolds, const Posi
                        SweepState& st) {
   // The deep manifolds and every other manifold of their blocks: a correction that moves a
   // block may push it into another neighbour, and that overlap is corrected in the same pass.
-  const std::vector<int> deep = deep_neighbourhood(manifolds, st);
-  for (int pass = 0; pass < settings.passes && !deep.empty(); ++pass) {
-    for (const int k : deep) {
-      const ContactManifold& m = manifolds[k];
+  std::vector<char> involved;
+  std::vector<int> list = deep_neighbourhood(manifolds, st, involved);
+  if (list.empty()) return;
+  // A correction also moves the block on the far side of a listed manifold, and may push it
+  // into a neighbour of its own: that block's manifolds join the list as it moves. Without
+  // this, on Vajont section III degraded a correction of slide_00446 against one heavy block
+  // pressed it 5 cm (0.9 % of its size) into another that the list did not hold.
+  const BlockManifolds of_block(manifolds, st.velocity.size());
+  std::vector<char> listed(manifolds.size(), 0);
+  for (const int k : list) listed[k] = 1;
+  const auto bring_in = [&](int b) {
+    if (involved[b] || !st.masses[b].moves) return;
+    involved[b] = 1;
+    for (int i = of_block.first[b]; i < of_block.first[b + 1]; ++i)
+      if (!listed[of_block.ids[i]]) listed[of_block.ids[i]] = 1, list.push_back(of_block.ids[i]);
+  };
+  for (int pass = 0; pass < settings.passes; ++pass) {
+    for (size_t i = 0; i < list.size(); ++i) {
+      const ContactManifold& m = manifolds[list[i]];
       BlockMass ma = st.masses[m.block_a], mb = st.masses[m.block_b];
       // Shared between the blocks as an impulse would be, but with the lighter block's
       // inverse mass and inertia capped at kCorrectionMassRatio times the heavier one's: a
@@ -189,6 +220,7 @@ void correct_positions(const std::vector<ContactManifold>& manifolds, const Posi
       }
       Vec3& da = st.step_moves[m.block_a];
       Vec3& db = st.step_moves[m.block_b];
+      bool moved = false;
       for (int q = 0; q < m.point_count; ++q) {
         const ContactPoint& p = m.points[q];
         const double excess = -current_gap(m, p, st.step_moves) - m.deep_overlap;
@@ -196,8 +228,9 @@ void correct_positions(const std::vector<ContactManifold>& manifolds, const Posi
         const double correction = std::min(settings.fraction * excess, settings.max_correction);
         const double ca = cross2(p.ra, m.normal), cb = cross2(p.rb, m.normal);
         const double k_n = ma.inverse_mass + mb.inverse_mass + ma.inverse_inertia * ca * ca + mb.inverse_inertia * cb * cb;
-        if (k_n > 0.0) apply(da, db, ma, mb, p, (correction / k_n) * m.normal);
+        if (k_n > 0.0) apply(da, db, ma, mb, p, (correction / k_n) * m.normal), moved = true;
       }
+      if (moved) bring_in(m.block_a), bring_in(m.block_b);
     }
   }
 }
