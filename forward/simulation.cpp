@@ -24,9 +24,10 @@ namespace {
 // is no longer damped by the implicit time scheme: a fraction of the elastic period
 // L / c of the largest free block (c = sqrt(E / rho); large blocks have the slowest
 // modes, so they are the first to be resolved). Measured on the seed's incline
-// (docs/verification.md, "Stability map"): 5e-4 s gave 0.06 % error, 2e-4 s gave 11 %,
-// with L / c = 1.6 ms.
-constexpr double kElasticPeriodFraction = 0.25;
+// (docs/verification.md, "Stability map"), L / c = 1.6 ms: before impacts were resolved as
+// impulses (forward/step/resolve_impacts.hpp) 5e-4 s gave 0.06 % error and 2e-4 s 11 %;
+// with them (model revision 2026-11-26.3) 2e-4 s gives 0.94 % and 1e-4 s 3.8 %.
+constexpr double kElasticPeriodFraction = 0.1;
 
 std::string time_step_warning(const Scene& scene, const BlockSystem& s) {
   double longest = 0.0;

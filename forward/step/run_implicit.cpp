@@ -16,6 +16,7 @@
 #include "forward/step/judge_step.hpp"
 #include "forward/step/open_close_iterate.hpp"
 #include "forward/step/settle_contacts.hpp"
+#include "forward/step/resolve_impacts.hpp"
 #include "forward/step/update_blocks.hpp"
 
 namespace ddafit {
@@ -124,6 +125,10 @@ void run_implicit(const Scene& scene, BlockSystem& system, RunRecorder& recorder
         break;
       }
       start_new_points(system, ctx.contacts, control.step, options.contact_tolerance_ratio * control.max_displacement);
+    }
+    {
+      ScopedTimer timer(profile.update);
+      resolve_impacts(ctx, control.step);
     }
     ctx.saved = ctx.contacts;
     bool accepted = false;
