@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <vector>
 
+#include "forward/contact/contact_law.hpp"
+
 namespace ddafit {
 namespace {
 
@@ -76,8 +78,8 @@ int resolve_impacts(ImplicitStepContext& ctx, double dt) {
       const double normal = std::max(i.normal + i.normal_mass * (i.target - vn), 0.0);
       apply(m, p, (normal - i.normal) * m.normal);
       i.normal = normal;
-      // Coulomb: |friction impulse| <= tan(phi) x normal impulse.
-      const double cap = m.friction * i.normal;
+      // Mohr-Coulomb (contact_law.hpp), no cohesion in an impact: |friction| <= tan(phi) x normal.
+      const double cap = coulomb_cap(m.friction, i.normal, 0.0);
       const double vt = m.tangent.dot(relative(m, p));
       const double tangent = std::clamp(i.tangent - i.tangent_mass * vt, -cap, cap);
       apply(m, p, (tangent - i.tangent) * m.tangent);
