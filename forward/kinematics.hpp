@@ -46,6 +46,24 @@ inline Vec2 exact_point_displacement(const Vec2& p, const Vec2& c, const Vec6& d
               d[1] + sr * X + cr * Y + d[4] * Y + 0.5 * d[5] * X);
 }
 
+// The rigid-body part of a block's motion, which both solvers' contact impulses act on.
+inline double cross2(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
+
+// Velocity of the material point at r (about the centroid) of a block moving with
+// q = (vx, vy, w), the rigid-body part of its six rates; also its displacement for a
+// small move q = (dx, dy, dtheta).
+inline Vec2 velocity_at(const Vec3& q, const Vec2& r) { return Vec2(q[0] - q[2] * r.y(), q[1] + q[2] * r.x()); }
+
+// 1 / (J W J^T) of a unit impulse along d at a point r_a, r_b from two blocks' centroids:
+// 1 / (1/m_a + 1/m_b + (r_a x d)^2 / I_a + (r_b x d)^2 / I_b), from the inverse masses and
+// moments of inertia (zero for a fixed block); 0 if both are fixed.
+inline double rigid_effective_mass(double inverse_mass_a, double inverse_inertia_a, double inverse_mass_b,
+                                   double inverse_inertia_b, const Vec2& ra, const Vec2& rb, const Vec2& d) {
+  const double ca = cross2(ra, d), cb = cross2(rb, d);
+  const double k = inverse_mass_a + inverse_mass_b + inverse_inertia_a * ca * ca + inverse_inertia_b * cb * cb;
+  return k > 0.0 ? 1.0 / k : 0.0;
+}
+
 // Elastic matrix C relating (eps_x, eps_y, gamma_xy) to (sigma_x, sigma_y, tau_xy).
 inline Mat3 elastic_matrix(double young_modulus, double poisson_ratio, bool plane_strain) {
   const double E = young_modulus, nu = poisson_ratio;

@@ -21,8 +21,6 @@ struct Impact {
   double tangent = 0.0;
 };
 
-inline double cross(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
-
 }  // namespace
 
 int resolve_impacts(ImplicitStepContext& ctx, double dt) {
@@ -39,17 +37,14 @@ int resolve_impacts(ImplicitStepContext& ctx, double dt) {
   };
   // Velocity of block b's material point at r from its centroid (rigid part of T V).
   const auto velocity = [&](int b, const Vec2& r) -> Vec2 {
-    const Vec6& v = s.blocks[b].velocity;
-    return Vec2(v[0] - v[2] * r.y(), v[1] + v[2] * r.x());
+    return velocity_at(s.blocks[b].velocity.head<3>(), r);
   };
   const auto relative = [&](const ContactManifold& m, const ContactPoint& p) -> Vec2 {
     return velocity(m.block_b, p.rb) - velocity(m.block_a, p.ra);
   };
   const auto effective_mass = [&](const ContactManifold& m, const ContactPoint& p, const Vec2& axis) {
-    const double ca = cross(p.ra, axis), cb = cross(p.rb, axis);
-    const double w = inverse_mass(m.block_a) + inverse_mass(m.block_b) + inverse_inertia(m.block_a) * ca * ca +
-                     inverse_inertia(m.block_b) * cb * cb;
-    return w > 0.0 ? 1.0 / w : 0.0;
+    return rigid_effective_mass(inverse_mass(m.block_a), inverse_inertia(m.block_a), inverse_mass(m.block_b),
+                                inverse_inertia(m.block_b), p.ra, p.rb, axis);
   };
   std::vector<Impact> impacts;
   for (int k = 0; k < static_cast<int>(manifolds.size()); ++k) {
@@ -67,8 +62,8 @@ int resolve_impacts(ImplicitStepContext& ctx, double dt) {
     Vec6& va = s.blocks[m.block_a].velocity;
     Vec6& vb = s.blocks[m.block_b].velocity;
     const double wa = inverse_mass(m.block_a), wb = inverse_mass(m.block_b);
-    va[0] -= wa * impulse.x(), va[1] -= wa * impulse.y(), va[2] -= inverse_inertia(m.block_a) * cross(p.ra, impulse);
-    vb[0] += wb * impulse.x(), vb[1] += wb * impulse.y(), vb[2] += inverse_inertia(m.block_b) * cross(p.rb, impulse);
+    va[0] -= wa * impulse.x(), va[1] -= wa * impulse.y(), va[2] -= inverse_inertia(m.block_a) * cross2(p.ra, impulse);
+    vb[0] += wb * impulse.x(), vb[1] += wb * impulse.y(), vb[2] += inverse_inertia(m.block_b) * cross2(p.rb, impulse);
   };
   for (int sweep = 0; sweep < kSweeps && !impacts.empty(); ++sweep) {
     for (Impact& i : impacts) {

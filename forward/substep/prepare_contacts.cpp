@@ -45,11 +45,9 @@ void prepare_contacts(SubstepContext& ctx, double h, double deep_overlap) {
     m.deep_overlap = std::max(slop, deep_overlap * std::min(size(m.block_a), size(m.block_b)));
     for (int q = 0; q < m.point_count; ++q) {
       ContactPoint& p = m.points[q];
-      // J W J^T of a unit impulse along d: 1/m_a + 1/m_b + (r_a x d)^2 / I_a + (r_b x d)^2 / I_b.
       const auto effective = [&](const Vec2& d) {
-        const double ca = cross2(p.ra, d), cb = cross2(p.rb, d);
-        const double k = ma.inverse_mass + mb.inverse_mass + ma.inverse_inertia * ca * ca + mb.inverse_inertia * cb * cb;
-        return k > 0.0 ? 1.0 / k : 0.0;
+        return rigid_effective_mass(ma.inverse_mass, ma.inverse_inertia, mb.inverse_mass, mb.inverse_inertia, p.ra,
+                                    p.rb, d);
       };
       p.impulse.normal_mass = effective(m.normal);
       p.impulse.tangent_mass = effective(m.tangent);

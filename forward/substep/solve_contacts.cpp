@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "forward/contact/contact_law.hpp"
 #include "forward/contact/slip_history.hpp"
@@ -192,14 +193,19 @@ void correct_positions(const std::vector<ContactManifold>& manifolds, const Posi
   // into a neighbour of its own: that block's manifolds join the list as it moves. Without
   // this, on Vajont section III degraded a correction of slide_00446 against one heavy block
   // pressed it 5 cm (0.9 % of its size) into another that the list did not hold.
-  const BlockManifolds of_block(manifolds, st.velocity.size());
-  std::vector<char> listed(manifolds.size(), 0);
-  for (const int k : list) listed[k] = 1;
+  // The block-to-manifold index is built only when a block outside the list first moves.
+  std::optional<BlockManifolds> of_block;
+  std::vector<char> listed;
   const auto bring_in = [&](int b) {
     if (involved[b] || !st.masses[b].moves) return;
+    if (!of_block) {
+      of_block.emplace(manifolds, st.velocity.size());
+      listed.assign(manifolds.size(), 0);
+      for (const int k : list) listed[k] = 1;
+    }
     involved[b] = 1;
-    for (int i = of_block.first[b]; i < of_block.first[b + 1]; ++i)
-      if (!listed[of_block.ids[i]]) listed[of_block.ids[i]] = 1, list.push_back(of_block.ids[i]);
+    for (int i = of_block->first[b]; i < of_block->first[b + 1]; ++i)
+      if (!listed[of_block->ids[i]]) listed[of_block->ids[i]] = 1, list.push_back(of_block->ids[i]);
   };
   for (int pass = 0; pass < settings.passes; ++pass) {
     for (size_t i = 0; i < list.size(); ++i) {

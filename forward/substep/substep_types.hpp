@@ -24,8 +24,6 @@ struct BlockMass {
   bool moves = false;
 };
 
-inline double cross2(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
-
 // The fastest a vertex of block b moves: centroid speed plus the rotation and strain rates
 // times the block's reach (its largest vertex distance from the centroid). The step control
 // and sleeping read it.
@@ -33,10 +31,5 @@ inline double vertex_speed_bound(const Block& b, double reach) {
   const Vec6& v = b.velocity;
   return std::hypot(v[0], v[1]) + reach * (std::abs(v[2]) + std::abs(v[3]) + std::abs(v[4]) + std::abs(v[5]));
 }
-
-// Velocity of the material point at r (about the centroid) of a block moving with
-// q = (vx, vy, w), the rigid-body part of its six rates; also its displacement for a
-// small move q = (dx, dy, dtheta).
-inline Vec2 velocity_at(const Vec3& q, const Vec2& r) { return Vec2(q[0] - q[2] * r.y(), q[1] + q[2] * r.x()); }
 
 }  // namespace ddafit
