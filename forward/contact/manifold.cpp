@@ -32,6 +32,10 @@ struct Axis {
   double separation = -kInfinity;  // its separation
   double apart = -kInfinity;       // the best separation over every axis
   bool flush_beside = false;       // "Flush neighbours" (manifold.hpp) holds for one of p's faces
+  // q lies along one of p's faces: its part within kRideDepth x eta of the face's line (or
+  // below it) reaches more than eta along the face. The two touch there, whatever another
+  // face's line says: they are no sliver (collide_polygons).
+  bool rides = false;
   // "Flush faces" (manifold.hpp): of the faces of p whose line q lies against (its gap
   // within eta on either side) without lying beside them, the best (flush_better); -1 if none.
   int flush_edge = -1;
@@ -49,6 +53,11 @@ struct Axis {
 // (least |gap|).
 constexpr double kSupportTie = 0.05;
 constexpr double kRideDepth = 0.1;
+// "Flush neighbours" (manifold.hpp) empties the manifold of a corner sliver: a pair whose
+// separation over every axis is no deeper than this share of eta. A quarter: a block resting
+// on a flush surface overlaps it by its resting overlap (1e-4 of its size, a thousandth of
+// eta at the default ratio), and a quarter of eta is half the 1 % overlap the runs are held to.
+constexpr double kSliverDepth = 0.25;
 bool flush_better(double support, double gap, double than_support, double than_gap, double eta, double slop) {
   const bool shallow = std::max(std::abs(gap), std::abs(than_gap)) <= kRideDepth * eta;
   if (shallow && std::abs(support - than_support) > kSupportTie) return support > than_support;
@@ -132,9 +141,15 @@ Axis best_axis(const Shape& p, std::span<const char> solid, const Shape& q, cons
       const Face f = grow_face(p, i, flat);
       const double from = tangent.dot(p.at(f.first) - p0), to = tangent.dot(p.at(f.last) - p0);
       const Span near = near_line_span(q, p0, normal, tangent, limits.flush_faces ? eta : kInfinity);
-      if (std::min(near.hi, to) - std::max(near.lo, from) <= 0.0) {
-        best.flush_beside = true;
-        break;
+      // No early exit here: the rule holds only for a sliver (collide_polygons), which
+      // needs every face and the separation over every axis.
+      const double along = std::min(near.hi, to) - std::max(near.lo, from);
+      if (along <= 0.0) best.flush_beside = true;
+      // Close to the line only: a joint meeting the surface at 30 deg has the slider's
+      // bottom within eta of its line for 2 eta, which is no riding along it.
+      if (along > eta && !best.rides) {
+        const Span close = near_line_span(q, p0, normal, tangent, kRideDepth * eta);
+        best.rides = std::min(close.hi, to) - std::max(close.lo, from) > eta;
       }
       const double support = std::max(normal.dot(limits.support_q), -normal.dot(limits.support_p));
       // Only a face the polygon lies close against (a tenth of eta): in a packed mass many
@@ -358,7 +373,15 @@ Manifold collide_polygons(std::span<const Vec2> a, std::span<const Vec2> b, cons
     return m;
 
   // Flush neighbours: two polygons along one surface line touch only at a corner sliver.
-  if (axis_a.flush_beside || axis_b.flush_beside) return m;
+  // Only while their overlap is one, no longer and no deeper than eta: not when one lies
+  // along another face of the other (rides), nor when they overlap deeper than
+  // kSliverDepth x eta along every axis of both. Otherwise a block resting on a face next
+  // to a slight kink of its polygon (the two faces not grown into one) lies beside the
+  // face across the kink and had no contact: on Vajont section V (reference) a 125 m2
+  // block lay beside the end of a bedrock face within eta (22 cm for it) and sank 20 cm
+  // into the bedrock piece's next face unseen.
+  const bool sliver = !axis_a.rides && !axis_b.rides && std::max(axis_a.apart, axis_b.apart) > -kSliverDepth * eta;
+  if ((axis_a.flush_beside || axis_b.flush_beside) && sliver) return m;
 
   // Flush faces (manifold.hpp): a polygon lying against the line of a face (within eta),
   // not beside it, touches that face, whatever the separating axis says; of two such

@@ -83,7 +83,9 @@ struct ManifoldSettings {
 // of T's line, on either side -- and its part within eta of that line lies wholly beside T
 // along the line, the two are neighbours
 // along one surface: they can only overlap in a corner sliver no deeper and no longer than
-// eta, and the manifold is empty. This is what lets a block slide across a joint between
+// eta, and the manifold is empty -- while their overlap is such a sliver: a pair whose
+// separation over every axis of both polygons is deeper than eta / 4 has sunk in through
+// another face (one nearly collinear with T) and keeps its manifold. This is what lets a block slide across a joint between
 // two blocks whose faces are flush (the slope surface, a row of blocks): before it crosses,
 // its leading corner sits just below the next block's corner (by its own resting overlap),
 // and the separating axis alone would take the joint face (or the slider's front face) as

@@ -1,0 +1,128 @@
+// The manifold's "Flush neighbours" rule (forward/contact/manifold.hpp, docs/theory.md §3):
+// a block lying beside the end of a face, along its line, touches that face's polygon only in
+// a corner sliver and gets no contact; a block that lies along another face of the polygon
+// does touch it. Swept over kink angles, block sizes, resting overlaps and joint angles.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+#include "forward/contact/manifold.hpp"
+
+namespace ddafit {
+namespace {
+
+const Vec2 kFar(2400.0, 700.0);  // Vajont-like coordinates
+constexpr double kDegree = M_PI / 180.0;
+constexpr double kFlushRatio = 0.02;  // collide.hpp's default: eta = 2 % of the block's size
+
+ManifoldSettings flush_settings(double size) {
+  ManifoldSettings m;
+  m.max_distance = 0.05 * size;
+  m.linear_slop = 1e-4 * size;
+  m.flush_tolerance = kFlushRatio * size;
+  return m;
+}
+
+// A square of side s whose bottom face lies along the line through `origin` with unit
+// tangent t (normal n = t turned left), from u0 to u0 + s along it, sunk d below the line.
+std::vector<Vec2> square_on(const Vec2& origin, const Vec2& t, double u0, double s, double d) {
+  const Vec2 n(-t.y(), t.x());
+  std::vector<Vec2> q;
+  for (const auto& [u, v] : {std::pair{u0, -d}, {u0 + s, -d}, {u0 + s, s - d}, {u0, s - d}})
+    q.push_back(origin + u * t + v * n);
+  return q;
+}
+
+// A fixed convex piece whose top is two faces meeting at K = kFar with a slight convex kink:
+// T, level, left of K; N, falling at `kink` to the right of K. Ten metres each: far longer
+// than the blocks, so neither is merged into the other (their ends lie off each other's
+// line by far more than the quarter of eta that merges faces).
+std::vector<Vec2> kinked_piece(double kink) {
+  const double L = 10.0;
+  return {kFar + Vec2(-L, -20.0), kFar + Vec2(L * std::cos(kink), -20.0),
+          kFar + Vec2(L * std::cos(kink), -L * std::sin(kink)), kFar, kFar + Vec2(-L, 0.0)};
+}
+
+double deepest(const Manifold& m) {
+  double d = 0.0;
+  for (int k = 0; k < m.point_count; ++k) d = std::min(d, m.points[k].separation);
+  return d;
+}
+
+TEST(FlushNeighbours, ABlockOnAFaceBesideASlightKinkOfItsPieceTouchesTheFace) {
+  // The block rests on N (or on T) just past the kink, so it also lies beside the other face
+  // within eta of its line. It lies along the face it rests on, so this is no sliver: it must
+  // get that face's two points at its own overlap. Before revision 2026-11-27.1 it got none
+  // and sank until it left eta (Vajont section V: 20 cm into the bedrock, unseen).
+  int cases = 0;
+  for (const double kink_degrees : {0.5, 1.0, 2.0, 5.0})
+    for (const double s : {0.5, 1.0, 4.0, 11.0})
+      for (const double x0 : {0.01, 0.05})
+        for (const double overlap : {1e-4, 0.1 * kFlushRatio, 0.5 * kFlushRatio})
+          for (const bool on_n : {true, false}) {
+            const double kink = kink_degrees * kDegree, d = overlap * s;
+            const std::vector<Vec2> piece = kinked_piece(kink);
+            // On N: along its tangent from K. On T: the square's far end x0 s short of K.
+            const Vec2 t = on_n ? Vec2(std::cos(kink), -std::sin(kink)) : Vec2(1.0, 0.0);
+            const std::vector<Vec2> block = square_on(kFar, t, on_n ? x0 * s : -(1.0 + x0) * s, s, d);
+            const Manifold m = collide_polygons(piece, block, flush_settings(s));
+            SCOPED_TRACE(testing::Message() << "kink " << kink_degrees << " deg, size " << s << " m, x0 " << x0
+                                            << ", overlap " << overlap << ", on " << (on_n ? "N" : "T"));
+            ASSERT_EQ(m.point_count, 2);
+            // The face's outward normal, from the piece towards the block.
+            EXPECT_LT((m.normal - Vec2(-t.y(), t.x())).norm(), 1e-9);
+            // Both points at the block's overlap: 1e-9 of a block, round-off at 2.4 km.
+            for (int k = 0; k < 2; ++k) EXPECT_NEAR(m.points[k].separation, -d, 1e-9 * s + 1e-10);
+            ++cases;
+          }
+  EXPECT_EQ(cases, 4 * 4 * 2 * 3 * 2);
+}
+
+TEST(FlushNeighbours, ABlockSunkIntoTheFaceBeyondAFaceEndIsSeen) {
+  // A level block beside the end of a level face T (its left end at T's end), sunk h below
+  // T's line, within eta of it: the piece's next face falls at alpha from T's end, so the
+  // block's corner is h cos(alpha) deep in the piece along that face's normal, h along T's.
+  // From a quarter of eta deep (the guard) that is no sliver and must be reported, at a
+  // depth between the two.
+  for (const double alpha_degrees : {10.0, 30.0, 45.0, 60.0})
+    for (const double s : {1.0, 4.0, 11.0})
+      for (const double h : {0.6, 0.9}) {
+        const double eta = kFlushRatio * s, alpha = alpha_degrees * kDegree, depth = h * eta;
+        const Vec2 down = 10.0 * Vec2(std::cos(alpha), -std::sin(alpha));
+        const std::vector<Vec2> piece = {kFar + Vec2(-10.0, -40.0), kFar + Vec2(down.x(), -40.0), kFar + down, kFar,
+                                         kFar + Vec2(-10.0, 0.0)};
+        const std::vector<Vec2> block = square_on(kFar, Vec2(1.0, 0.0), 0.0, s, depth);
+        SCOPED_TRACE(testing::Message() << "face at " << alpha_degrees << " deg, size " << s << " m, " << h
+                                        << " eta below T's line");
+        const Manifold m = collide_polygons(piece, block, flush_settings(s));
+        ASSERT_GE(m.point_count, 1);
+        EXPECT_GE(deepest(m), -depth - 1e-9 * s);
+        EXPECT_LE(deepest(m), -depth * std::cos(alpha) + 1e-9 * s);
+      }
+}
+
+TEST(FlushNeighbours, ABlockRestingOnOneBlockBesideTheNextOfAFlushSurfaceHasNoContactWithIt) {
+  // The ghost collision the rule exists for: a slider resting on block A (its resting overlap
+  // below the flush surface) with its leading corner at or just short of the joint with
+  // block B, whose joint face meets the surface at psi. Its corner lies below B's corner; the
+  // separating axis alone would take the joint face or the slider's front face and throw it
+  // back. B and the slider touch at most in a sliver: no points. Joints from 60 to 120 deg.
+  for (const double psi_degrees : {60.0, 75.0, 90.0, 105.0, 120.0, 135.0, 150.0})
+    for (const double s : {0.5, 1.0, 4.0, 11.0})
+      for (const double overlap : {1e-5, 1e-4})
+        for (const double short_of_joint : {0.0, 1e-3}) {
+          const double psi = psi_degrees * kDegree;
+          const Vec2 down = 5.0 * s * Vec2(std::cos(psi), -std::sin(psi));  // along B's joint face
+          const std::vector<Vec2> b = {kFar, kFar + down, kFar + Vec2(10.0 * s, down.y()), kFar + Vec2(10.0 * s, 0.0)};
+          const std::vector<Vec2> slider =
+              square_on(kFar, Vec2(1.0, 0.0), -(1.0 + short_of_joint) * s, s, overlap * s);
+          SCOPED_TRACE(testing::Message() << "joint " << psi_degrees << " deg, size " << s << " m, overlap "
+                                          << overlap << ", short " << short_of_joint);
+          EXPECT_EQ(collide_polygons(b, slider, flush_settings(s)).point_count, 0);
+          EXPECT_EQ(collide_polygons(slider, b, flush_settings(s)).point_count, 0);
+        }
+}
+
+}  // namespace
+}  // namespace ddafit
