@@ -195,7 +195,8 @@ std::string collide(const BlockSystem& s, ContactDetection& detection, const std
   for (long k = 0; k < n; ++k)
     if (geometry[k].point_count > 0) touching.push_back(static_cast<int>(k));
 
-  const std::vector<ContactManifold> previous = std::move(contacts.manifolds);
+  std::vector<ContactManifold>& previous = detection.previous;
+  previous.swap(contacts.manifolds);
   std::vector<ContactManifold>& manifolds = contacts.manifolds;
   manifolds.assign(touching.size(), ContactManifold{});
   const long t = static_cast<long>(touching.size());
@@ -244,7 +245,7 @@ std::string collide(const BlockSystem& s, ContactDetection& detection, const std
     }
   }
   drop_shared_corners(s, manifolds, settings.linear_slop);
-  assign_histories(s, contacts);
+  assign_histories(s, contacts, detection.previous_histories);
   std::string problem;
   for (const ContactManifold& m : manifolds) {
     if (m.interface >= 0) continue;

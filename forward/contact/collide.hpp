@@ -45,6 +45,10 @@ struct ContactDetection {
   ContactShapes shapes;      // build_shapes(), once per run
   CollideSettings settings;  // first_step is cleared after each detection
   std::vector<Manifold> geometry;  // scratch of the narrow phase
+  // Scratch: the last step's manifolds while this step's are built. Kept between calls so
+  // that the ~12 MB of section VII's manifolds are not allocated and faulted in every step.
+  std::vector<ContactManifold> previous;
+  std::vector<SlipHistory> previous_histories;  // the same for assign_histories()
 };
 
 // With detection's shapes and settings; its geometry is the narrow phase's scratch.

@@ -81,15 +81,16 @@ struct ManifoldSettings {
 // Flush neighbours (the internal-edge or "ghost collision" rule). When one polygon lies
 // against the line of a face T of the other -- its deepest point within eta = flush_tolerance
 // of T's line, on either side -- and its part within eta of that line lies wholly beside T
-// along the line, the two are neighbours
-// along one surface: they can only overlap in a corner sliver no deeper and no longer than
-// eta, and the manifold is empty -- while their overlap is such a sliver: a pair whose
-// separation over every axis of both polygons is deeper than eta / 4 has sunk in through
-// another face (one nearly collinear with T) and keeps its manifold. This is what lets a block slide across a joint between
-// two blocks whose faces are flush (the slope surface, a row of blocks): before it crosses,
-// its leading corner sits just below the next block's corner (by its own resting overlap),
-// and the separating axis alone would take the joint face (or the slider's front face) as
-// the contact face and throw the block back. Once it has crossed, the next block's face lies
+// along the line, the two are neighbours along one surface: they can only overlap in a
+// corner sliver no deeper and no longer than eta, and the manifold is empty. Only while
+// the overlap is such a sliver: a polygon that lies along another face of the other (its
+// part within eta / 10 of that face's line reaches more than eta along it), or a pair
+// that overlaps deeper than eta / 4 along every axis of both, keeps its manifold (it rests
+// on, or has sunk into, a face nearly collinear with T). This is what lets a block slide
+// across a joint between two blocks whose faces are flush (the slope surface, a row of
+// blocks): before it crosses, its leading corner sits just below the next block's corner
+// (by its own resting overlap), and the separating axis alone would take the joint face
+// (or the slider's front face) as the contact face and throw the block back. Once it has crossed, the next block's face lies
 // under it and the separating axis takes that face. It needs no knowledge of the block the
 // slider rests on: the slider lies along the next block's face line, beside the face. A
 // real step is higher than eta: the slider then reaches below T's line by the step's

@@ -49,8 +49,8 @@ void heat_shear_band(const BlockSystem& s, const ContactSet& contacts, SlipHisto
 
 }  // namespace
 
-void assign_histories(const BlockSystem& s, ContactSet& contacts) {
-  const std::vector<SlipHistory> previous = std::move(contacts.histories);
+void assign_histories(const BlockSystem& s, ContactSet& contacts, std::vector<SlipHistory>& previous) {
+  previous.swap(contacts.histories);
   std::vector<SlipHistory>& histories = contacts.histories;
   histories.clear();
   std::vector<int> carried(previous.size(), -1);     // previous history -> this step's
