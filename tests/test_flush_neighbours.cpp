@@ -16,8 +16,10 @@ const Vec2 kFar(2400.0, 700.0);  // Vajont-like coordinates
 constexpr double kDegree = M_PI / 180.0;
 constexpr double kFlushRatio = 0.02;  // collide.hpp's default: eta = 2 % of the block's size
 
-ManifoldSettings flush_settings(double size) {
+// flush_faces: as collide() sets it for a pair with a fixed block; off between free blocks.
+ManifoldSettings flush_settings(double size, bool flush_faces = true) {
   ManifoldSettings m;
+  m.flush_faces = flush_faces;
   m.max_distance = 0.05 * size;
   m.linear_slop = 1e-4 * size;
   m.flush_tolerance = kFlushRatio * size;
@@ -60,23 +62,25 @@ TEST(FlushNeighbours, ABlockOnAFaceBesideASlightKinkOfItsPieceTouchesTheFace) {
     for (const double s : {0.5, 1.0, 4.0, 11.0})
       for (const double x0 : {0.01, 0.05})
         for (const double overlap : {1e-4, 0.1 * kFlushRatio, 0.5 * kFlushRatio})
-          for (const bool on_n : {true, false}) {
-            const double kink = kink_degrees * kDegree, d = overlap * s;
-            const std::vector<Vec2> piece = kinked_piece(kink);
-            // On N: along its tangent from K. On T: the square's far end x0 s short of K.
-            const Vec2 t = on_n ? Vec2(std::cos(kink), -std::sin(kink)) : Vec2(1.0, 0.0);
-            const std::vector<Vec2> block = square_on(kFar, t, on_n ? x0 * s : -(1.0 + x0) * s, s, d);
-            const Manifold m = collide_polygons(piece, block, flush_settings(s));
-            SCOPED_TRACE(testing::Message() << "kink " << kink_degrees << " deg, size " << s << " m, x0 " << x0
-                                            << ", overlap " << overlap << ", on " << (on_n ? "N" : "T"));
-            ASSERT_EQ(m.point_count, 2);
-            // The face's outward normal, from the piece towards the block.
-            EXPECT_LT((m.normal - Vec2(-t.y(), t.x())).norm(), 1e-9);
-            // Both points at the block's overlap: 1e-9 of a block, round-off at 2.4 km.
-            for (int k = 0; k < 2; ++k) EXPECT_NEAR(m.points[k].separation, -d, 1e-9 * s + 1e-10);
-            ++cases;
-          }
-  EXPECT_EQ(cases, 4 * 4 * 2 * 3 * 2);
+          for (const bool on_n : {true, false})
+            for (const bool fixed_piece : {true, false}) {
+              const double kink = kink_degrees * kDegree, d = overlap * s;
+              const std::vector<Vec2> piece = kinked_piece(kink);
+              // On N: along its tangent from K. On T: the square's far end x0 s short of K.
+              const Vec2 t = on_n ? Vec2(std::cos(kink), -std::sin(kink)) : Vec2(1.0, 0.0);
+              const std::vector<Vec2> block = square_on(kFar, t, on_n ? x0 * s : -(1.0 + x0) * s, s, d);
+              const Manifold m = collide_polygons(piece, block, flush_settings(s, fixed_piece));
+              SCOPED_TRACE(testing::Message() << "kink " << kink_degrees << " deg, size " << s << " m, x0 " << x0
+                                              << ", overlap " << overlap << ", on " << (on_n ? "N" : "T")
+                                              << (fixed_piece ? ", fixed piece" : ", free piece"));
+              ASSERT_EQ(m.point_count, 2);
+              // The face's outward normal, from the piece towards the block.
+              EXPECT_LT((m.normal - Vec2(-t.y(), t.x())).norm(), 1e-9);
+              // Both points at the block's overlap: 1e-9 of a block, round-off at 2.4 km.
+              for (int k = 0; k < 2; ++k) EXPECT_NEAR(m.points[k].separation, -d, 1e-9 * s + 1e-10);
+              ++cases;
+            }
+  EXPECT_EQ(cases, 4 * 4 * 2 * 3 * 2 * 2);
 }
 
 TEST(FlushNeighbours, ABlockSunkIntoTheFaceBeyondAFaceEndIsSeen) {
@@ -93,12 +97,14 @@ TEST(FlushNeighbours, ABlockSunkIntoTheFaceBeyondAFaceEndIsSeen) {
         const std::vector<Vec2> piece = {kFar + Vec2(-10.0, -40.0), kFar + Vec2(down.x(), -40.0), kFar + down, kFar,
                                          kFar + Vec2(-10.0, 0.0)};
         const std::vector<Vec2> block = square_on(kFar, Vec2(1.0, 0.0), 0.0, s, depth);
-        SCOPED_TRACE(testing::Message() << "face at " << alpha_degrees << " deg, size " << s << " m, " << h
-                                        << " eta below T's line");
-        const Manifold m = collide_polygons(piece, block, flush_settings(s));
-        ASSERT_GE(m.point_count, 1);
-        EXPECT_GE(deepest(m), -depth - 1e-9 * s);
-        EXPECT_LE(deepest(m), -depth * std::cos(alpha) + 1e-9 * s);
+        for (const bool fixed_piece : {true, false}) {
+          SCOPED_TRACE(testing::Message() << "face at " << alpha_degrees << " deg, size " << s << " m, " << h
+                                          << " eta below T's line" << (fixed_piece ? ", fixed" : ", free"));
+          const Manifold m = collide_polygons(piece, block, flush_settings(s, fixed_piece));
+          ASSERT_GE(m.point_count, 1);
+          EXPECT_GE(deepest(m), -depth - 1e-9 * s);
+          EXPECT_LE(deepest(m), -depth * std::cos(alpha) + 1e-9 * s);
+        }
       }
 }
 
@@ -119,8 +125,10 @@ TEST(FlushNeighbours, ABlockRestingOnOneBlockBesideTheNextOfAFlushSurfaceHasNoCo
               square_on(kFar, Vec2(1.0, 0.0), -(1.0 + short_of_joint) * s, s, overlap * s);
           SCOPED_TRACE(testing::Message() << "joint " << psi_degrees << " deg, size " << s << " m, overlap "
                                           << overlap << ", short " << short_of_joint);
-          EXPECT_EQ(collide_polygons(b, slider, flush_settings(s)).point_count, 0);
-          EXPECT_EQ(collide_polygons(slider, b, flush_settings(s)).point_count, 0);
+          for (const bool fixed_b : {true, false}) {
+            EXPECT_EQ(collide_polygons(b, slider, flush_settings(s, fixed_b)).point_count, 0);
+            EXPECT_EQ(collide_polygons(slider, b, flush_settings(s, fixed_b)).point_count, 0);
+          }
         }
 }
 
