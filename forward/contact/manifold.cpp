@@ -30,14 +30,15 @@ struct Shape {
 struct Axis {
   int edge = -1;                   // the best axis that may be a reference face (long enough)
   double separation = -kInfinity;  // its separation
-  double apart = -kInfinity;       // the best separation over every axis
+  double apart = -kInfinity;       // the best separation over every solid axis (cuts are no axis here)
   bool flush_beside = false;       // "Flush neighbours" (manifold.hpp) holds for one of p's faces
   // q lies along one of p's faces: its part within kRideDepth x eta of the face's line (or
   // below it) reaches more than eta along the face. The two touch there, whatever another
   // face's line says: they are no sliver (collide_polygons).
   bool rides = false;
   // "Flush faces" (manifold.hpp): of the faces of p whose line q lies against (its gap
-  // within eta on either side) without lying beside them, the best (flush_better); -1 if none.
+  // within eta / 10 on either side), the best (flush_better); -1 if none. A face q lies
+  // beside is a candidate too; it matters only where the pair is no sliver (collide_polygons).
   int flush_edge = -1;
   double flush_gap = kInfinity;
   double flush_support = 0.0;  // how well its normal agrees with the pair's supports
@@ -54,9 +55,9 @@ struct Axis {
 constexpr double kSupportTie = 0.05;
 constexpr double kRideDepth = 0.1;
 // "Flush neighbours" (manifold.hpp) empties the manifold of a corner sliver: a pair whose
-// separation over every axis is no deeper than this share of eta. A quarter: a block resting
-// on a flush surface overlaps it by its resting overlap (1e-4 of its size, a thousandth of
-// eta at the default ratio), and a quarter of eta is half the 1 % overlap the runs are held to.
+// separation over every solid axis is no deeper than this share of eta. A quarter: a block
+// resting on a flush surface overlaps it by its resting overlap (about 1e-4 of its size, 1/200
+// of eta at the default ratio), and a quarter of eta is half the 1 % overlap the runs are held to.
 constexpr double kSliverDepth = 0.25;
 bool flush_better(double support, double gap, double than_support, double than_gap, double eta, double slop) {
   const bool shallow = std::max(std::abs(gap), std::abs(than_gap)) <= kRideDepth * eta;

@@ -90,8 +90,8 @@ struct ManifoldSettings {
 // across a joint between two blocks whose faces are flush (the slope surface, a row of
 // blocks): before it crosses, its leading corner sits just below the next block's corner
 // (by its own resting overlap), and the separating axis alone would take the joint face
-// (or the slider's front face) as the contact face and throw the block back. Once it has crossed, the next block's face lies
-// under it and the separating axis takes that face. It needs no knowledge of the block the
+// (or the slider's front face) as the contact face and throw the block back. Once it has
+// crossed, the next block's face lies under it and the separating axis takes that face. It needs no knowledge of the block the
 // slider rests on: the slider lies along the next block's face line, beside the face. A
 // real step is higher than eta: the slider then reaches below T's line by the step's
 // height, the rule does not apply, and the step's face stops it. A block above T by more
