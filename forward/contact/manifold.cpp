@@ -2,197 +2,16 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
+
+#include "forward/contact/face_axes.hpp"
 
 namespace ddafit {
 namespace {
+using namespace face_axes;  // the separating axes and flush rules (face_axes.hpp)
 
-constexpr double kInfinity = std::numeric_limits<double>::infinity();
 // Faces closer to parallel than sin^2(angle) = 1e-10 (about 1e-5 rad) are treated as
 // parallel: the closest-point formula divides by sin^2 and loses every digit there.
 constexpr double kParallel = 1e-10;
-
-double cross(const Vec2& u, const Vec2& v) { return u.x() * v.y() - u.y() * v.x(); }
-
-// Outward direction of an edge of a counter-clockwise polygon: its right-hand side.
-Vec2 outward(const Vec2& edge) { return Vec2(edge.y(), -edge.x()); }
-
-// A polygon seen from a's first vertex: the polygons are metres across but their
-// coordinates reach ~3000 m, so differences are taken once, near the origin.
-struct Shape {
-  std::span<const Vec2> v;
-  Vec2 origin;
-  int n = 0;
-  // i in [0, 2n): a wrap by subtraction, not %, which was a tenth of the narrow phase.
-  Vec2 at(int i) const { return v[static_cast<size_t>(i < n ? i : i - n)] - origin; }
-};
-
-struct Axis {
-  int edge = -1;                   // the best axis that may be a reference face (long enough)
-  double separation = -kInfinity;  // its separation
-  double apart = -kInfinity;       // the best separation over every solid axis (cuts are no axis here)
-  bool flush_beside = false;       // "Flush neighbours" (manifold.hpp) holds for one of p's faces
-  // q lies along one of p's faces: its part within kRideDepth x eta of the face's line (or
-  // below it) reaches more than eta along the face. The two touch there, whatever another
-  // face's line says: they are no sliver (collide_polygons).
-  bool rides = false;
-  // "Flush faces" (manifold.hpp): of the faces of p whose line q lies against (its gap
-  // within eta / 10 on either side), the best (flush_better); -1 if none. A face q lies
-  // beside is a candidate too; it matters only where the pair is no sliver (collide_polygons).
-  int flush_edge = -1;
-  double flush_gap = kInfinity;
-  double flush_support = 0.0;  // how well its normal agrees with the pair's supports
-};
-
-// Flush faces are ranked by how well their normal (from p towards q) agrees with the way
-// the two blocks were held up in the last step (ManifoldSettings::support_*): a block that
-// rests on a surface meets the next block of it through its face, not its side, when its
-// corner crosses the joint. Only while both gaps are within kRideDepth x eta: a corner
-// deeper under a face has met a step, whose side is the contact (a block riding up a 2 mm
-// step under a 1.2 m block was kicked off it by the implicit solver's penalty spring).
-// Otherwise, and within kSupportTie of each other, the face q lies closer to the line of
-// (least |gap|).
-constexpr double kSupportTie = 0.05;
-constexpr double kRideDepth = 0.1;
-// "Flush neighbours" (manifold.hpp) empties the manifold of a corner sliver: a pair whose
-// separation over every solid axis is no deeper than this share of eta. A quarter: a block
-// resting on a flush surface overlaps it by its resting overlap (about 1e-4 of its size, 1/200
-// of eta at the default ratio), and a quarter of eta is half the 1 % overlap the runs are held to.
-constexpr double kSliverDepth = 0.25;
-bool flush_better(double support, double gap, double than_support, double than_gap, double eta, double slop) {
-  const bool shallow = std::max(std::abs(gap), std::abs(than_gap)) <= kRideDepth * eta;
-  if (shallow && std::abs(support - than_support) > kSupportTie) return support > than_support;
-  return std::abs(gap) + slop < std::abs(than_gap);
-}
-
-// A face: the run of edges from vertex `first` to vertex `last` (counter-clockwise).
-struct Face {
-  int first = 0;
-  int last = 0;
-};
-
-// Grows an edge over its neighbours while they continue its line within `flat`. Without
-// this a straight vertex in the middle of a side would make the reference face half a
-// side, and a block resting on that side would be held at one half only.
-Face grow_face(const Shape& p, int edge, double flat) {
-  const Vec2 p0 = p.at(edge), t = (p.at(edge + 1) - p0).normalized();
-  const auto on_line = [&](int from, int to, int test) {
-    return std::abs(cross(t, p.at(test) - p0)) <= flat && t.dot(p.at(to) - p.at(from)) > 0.0;
-  };
-  Face f{edge, (edge + 1) % p.n};
-  // Leave at least two edges outside the face: beyond that the polygon has no area.
-  for (int edges = 1; edges < p.n - 2; ++edges) {
-    const int before = (f.first + p.n - 1) % p.n, after = (f.last + 1) % p.n;
-    if (on_line(before, f.first, before)) {
-      f.first = before;
-    } else if (on_line(f.last, after, after)) {
-      f.last = after;
-    } else {
-      break;
-    }
-  }
-  return f;
-}
-
-// The span along a face's line of the part of q within eta of the line, or below it:
-// q clipped to the band h <= eta, h = normal . (x - p0). Its vertices in the band and
-// the points where its edges leave the band, projected on the tangent from p0.
-struct Span {
-  double lo, hi;
-};
-Span near_line_span(const Shape& q, const Vec2& p0, const Vec2& normal, const Vec2& tangent, double eta);
-
-// The length of edge i of p grown over its collinear neighbours (grow_face).
-double face_length(const Shape& p, int i, double flat);
-
-// The edge of p whose normal separates q from p the most. p's own extent beyond the
-// edge along that normal is subtracted: it is zero for a convex polygon, but keeps the
-// value a true lower bound of the gap if a nearly straight vertex leaves a tiny edge
-// whose normal points anywhere. Stops early once the separation passes `apart` (no
-// contact then; the caller only needs to know that).
-// With eta > 0 it also reads the faces q lies against (its gap within eta on either
-// side; manifold.hpp, "Flush neighbours" and "Flush faces"): the gap is at hand, and only
-// such faces need q's span along them.
-struct AxisLimits {
-  double tiny = 0.0;   // an edge shorter than this has no direction
-  double apart = 0.0;  // the margin beyond which there is no contact
-  double eta = 0.0;    // the flush tolerance
-  double flat = 0.0;   // a face's straightness (grow_face)
-  bool flush_faces = true;  // ManifoldSettings::flush_faces
-  // The supports of p's and q's blocks (ManifoldSettings::support_a/b): a normal from p
-  // towards q agrees with q's support, or against p's.
-  Vec2 support_p = Vec2::Zero(), support_q = Vec2::Zero();
-};
-
-Axis best_axis(const Shape& p, std::span<const char> solid, const Shape& q, const AxisLimits& limits) {
-  const double tiny = limits.tiny, apart = limits.apart, eta = limits.eta, flat = limits.flat;
-  Axis best;
-  for (int i = 0; i < p.n; ++i) {
-    if (!solid.empty() && !solid[static_cast<size_t>(i)]) continue;
-    const Vec2 p0 = p.at(i), edge = p.at(i + 1) - p0;
-    const double length = edge.norm();
-    if (!(length > tiny)) continue;
-    const Vec2 normal = outward(edge) / length;
-    double own = 0.0, gap = kInfinity;
-    for (int k = 0; k < q.n; ++k) gap = std::min(gap, normal.dot(q.at(k) - p0));
-    if (eta > 0.0 && std::abs(gap) <= eta) {
-      // q lies against the face's line: beside the face (its part near the line does not
-      // reach along the face), or on it.
-      const Vec2 tangent = edge / length;
-      const Face f = grow_face(p, i, flat);
-      const double from = tangent.dot(p.at(f.first) - p0), to = tangent.dot(p.at(f.last) - p0);
-      const Span near = near_line_span(q, p0, normal, tangent, limits.flush_faces ? eta : kInfinity);
-      // No early exit here: the rule holds only for a sliver (collide_polygons), which
-      // needs every face and the separation over every axis.
-      const double along = std::min(near.hi, to) - std::max(near.lo, from);
-      if (along <= 0.0) best.flush_beside = true;
-      // Close to the line only: a joint meeting the surface at 30 deg has the slider's
-      // bottom within eta of its line for 2 eta, which is no riding along it.
-      if (along > eta && !best.rides) {
-        const Span close = near_line_span(q, p0, normal, tangent, kRideDepth * eta);
-        best.rides = std::min(close.hi, to) - std::max(close.lo, from) > eta;
-      }
-      const double support = std::max(normal.dot(limits.support_q), -normal.dot(limits.support_p));
-      // Only a face the polygon lies close against (a tenth of eta): in a packed mass many
-      // blocks lie within eta of a neighbour's face line, and overriding the separating axis
-      // for all of them let Vajont section IV overlap by 1 % of a block.
-      if (limits.flush_faces && to - from >= eta && std::abs(gap) <= kRideDepth * eta &&
-          (best.flush_edge < 0 || flush_better(support, gap, best.flush_support, best.flush_gap, eta, 0.0))) {
-        best.flush_edge = i;
-        best.flush_gap = gap;
-        best.flush_support = support;
-      }
-    }
-    if (!(gap > best.separation) && !(gap > best.apart)) continue;  // own >= 0 cannot make it better
-    for (int k = 0; k < p.n; ++k) own = std::max(own, normal.dot(p.at(k) - p0));
-    const double separation = gap - own;
-    best.apart = std::max(best.apart, separation);
-    // A face shorter than eta (grown over collinear neighbours) is no reference face: the
-    // depth of a corner metres away, measured from the line of a 6 cm face, means nothing
-    // (a 2.5 cm and a 6 cm edge left where three joints met on Vajont section V read a
-    // small block 0.36 m "deep" in the notch of its neighbour). It still separates.
-    if (separation > best.separation && (length >= eta || face_length(p, i, flat) >= eta)) {
-      best.edge = i;
-      best.separation = separation;
-    }
-    if (best.apart > apart) break;
-  }
-  return best;
-}
-
-bool cut_separates(const Shape& p, const Shape& q, double tiny, std::span<const char> solid, double slop) {
-  for (int i = 0; i < p.n && !solid.empty(); ++i) {
-    if (solid[static_cast<size_t>(i)]) continue;
-    const Vec2 p0 = p.at(i), edge = p.at(i + 1) - p0;
-    const double length = edge.norm();
-    if (!(length > tiny)) continue;
-    const Vec2 normal = outward(edge) / length;
-    double gap = kInfinity;
-    for (int k = 0; k < q.n; ++k) gap = std::min(gap, normal.dot(q.at(k) - p0));
-    if (gap > -slop) return true;
-  }
-  return false;
-}
 
 // The edge of `inc` facing the direction `normal` (unit) the most, among its solid edges:
 // the incident face. `facing` is the cosine between its outward normal and `normal`;
@@ -313,26 +132,6 @@ void clip_face_contact(const Shape& ref, const Face& rf, const Shape& inc, const
   m.incident_face = incf.first;
 }
 
-double face_length(const Shape& p, int i, double flat) {
-  const Face f = grow_face(p, i, flat);
-  return (p.at(f.last) - p.at(f.first)).norm();
-}
-
-Span near_line_span(const Shape& q, const Vec2& p0, const Vec2& normal, const Vec2& tangent, double eta) {
-  Span span{kInfinity, -kInfinity};
-  const auto add = [&](const Vec2& x) {
-    const double u = tangent.dot(x);
-    span.lo = std::min(span.lo, u);
-    span.hi = std::max(span.hi, u);
-  };
-  for (int k = 0; k < q.n; ++k) {
-    const Vec2 x0 = q.at(k) - p0, x1 = q.at(k + 1) - p0;
-    const double h0 = normal.dot(x0) - eta, h1 = normal.dot(x1) - eta;
-    if (h0 <= 0.0) add(x0);
-    if ((h0 < 0.0) != (h1 < 0.0) && h0 != h1) add(x0 + (h0 / (h0 - h1)) * (x1 - x0));
-  }
-  return span;
-}
 
 }  // namespace
 

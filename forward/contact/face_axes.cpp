@@ -1,0 +1,125 @@
+#include "forward/contact/face_axes.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace ddafit::face_axes {
+
+bool flush_better(double support, double gap, double than_support, double than_gap, double eta, double slop) {
+  const bool shallow = std::max(std::abs(gap), std::abs(than_gap)) <= kRideDepth * eta;
+  if (shallow && std::abs(support - than_support) > kSupportTie) return support > than_support;
+  return std::abs(gap) + slop < std::abs(than_gap);
+}
+
+Face grow_face(const Shape& p, int edge, double flat) {
+  const Vec2 p0 = p.at(edge), t = (p.at(edge + 1) - p0).normalized();
+  const auto on_line = [&](int from, int to, int test) {
+    return std::abs(cross(t, p.at(test) - p0)) <= flat && t.dot(p.at(to) - p.at(from)) > 0.0;
+  };
+  Face f{edge, (edge + 1) % p.n};
+  // Leave at least two edges outside the face: beyond that the polygon has no area.
+  for (int edges = 1; edges < p.n - 2; ++edges) {
+    const int before = (f.first + p.n - 1) % p.n, after = (f.last + 1) % p.n;
+    if (on_line(before, f.first, before)) {
+      f.first = before;
+    } else if (on_line(f.last, after, after)) {
+      f.last = after;
+    } else {
+      break;
+    }
+  }
+  return f;
+}
+
+Axis best_axis(const Shape& p, std::span<const char> solid, const Shape& q, const AxisLimits& limits) {
+  const double tiny = limits.tiny, apart = limits.apart, eta = limits.eta, flat = limits.flat;
+  Axis best;
+  for (int i = 0; i < p.n; ++i) {
+    if (!solid.empty() && !solid[static_cast<size_t>(i)]) continue;
+    const Vec2 p0 = p.at(i), edge = p.at(i + 1) - p0;
+    const double length = edge.norm();
+    if (!(length > tiny)) continue;
+    const Vec2 normal = outward(edge) / length;
+    double own = 0.0, gap = kInfinity;
+    for (int k = 0; k < q.n; ++k) gap = std::min(gap, normal.dot(q.at(k) - p0));
+    if (eta > 0.0 && std::abs(gap) <= eta) {
+      // q lies against the face's line: beside the face (its part near the line does not
+      // reach along the face), or on it.
+      const Vec2 tangent = edge / length;
+      const Face f = grow_face(p, i, flat);
+      const double from = tangent.dot(p.at(f.first) - p0), to = tangent.dot(p.at(f.last) - p0);
+      const Span near = near_line_span(q, p0, normal, tangent, limits.flush_faces ? eta : kInfinity);
+      // No early exit here: the rule holds only for a sliver (collide_polygons), which
+      // needs every face and the separation over every axis.
+      const double along = std::min(near.hi, to) - std::max(near.lo, from);
+      if (along <= 0.0) best.flush_beside = true;
+      // Close to the line only: a joint meeting the surface at 30 deg has the slider's
+      // bottom within eta of its line for 2 eta, which is no riding along it.
+      if (along > eta && !best.rides) {
+        const Span close = near_line_span(q, p0, normal, tangent, kRideDepth * eta);
+        best.rides = std::min(close.hi, to) - std::max(close.lo, from) > eta;
+      }
+      const double support = std::max(normal.dot(limits.support_q), -normal.dot(limits.support_p));
+      // Only a face the polygon lies close against (a tenth of eta): in a packed mass many
+      // blocks lie within eta of a neighbour's face line, and overriding the separating axis
+      // for all of them let Vajont section IV overlap by 1 % of a block.
+      if (limits.flush_faces && to - from >= eta && std::abs(gap) <= kRideDepth * eta &&
+          (best.flush_edge < 0 || flush_better(support, gap, best.flush_support, best.flush_gap, eta, 0.0))) {
+        best.flush_edge = i;
+        best.flush_gap = gap;
+        best.flush_support = support;
+      }
+    }
+    if (!(gap > best.separation) && !(gap > best.apart)) continue;  // own >= 0 cannot make it better
+    for (int k = 0; k < p.n; ++k) own = std::max(own, normal.dot(p.at(k) - p0));
+    const double separation = gap - own;
+    best.apart = std::max(best.apart, separation);
+    // A face shorter than eta (grown over collinear neighbours) is no reference face: the
+    // depth of a corner metres away, measured from the line of a 6 cm face, means nothing
+    // (a 2.5 cm and a 6 cm edge left where three joints met on Vajont section V read a
+    // small block 0.36 m "deep" in the notch of its neighbour). It still separates.
+    if (separation > best.separation && (length >= eta || face_length(p, i, flat) >= eta)) {
+      best.edge = i;
+      best.separation = separation;
+    }
+    if (best.apart > apart) break;
+  }
+  return best;
+}
+
+bool cut_separates(const Shape& p, const Shape& q, double tiny, std::span<const char> solid, double slop) {
+  for (int i = 0; i < p.n && !solid.empty(); ++i) {
+    if (solid[static_cast<size_t>(i)]) continue;
+    const Vec2 p0 = p.at(i), edge = p.at(i + 1) - p0;
+    const double length = edge.norm();
+    if (!(length > tiny)) continue;
+    const Vec2 normal = outward(edge) / length;
+    double gap = kInfinity;
+    for (int k = 0; k < q.n; ++k) gap = std::min(gap, normal.dot(q.at(k) - p0));
+    if (gap > -slop) return true;
+  }
+  return false;
+}
+
+double face_length(const Shape& p, int i, double flat) {
+  const Face f = grow_face(p, i, flat);
+  return (p.at(f.last) - p.at(f.first)).norm();
+}
+
+Span near_line_span(const Shape& q, const Vec2& p0, const Vec2& normal, const Vec2& tangent, double eta) {
+  Span span{kInfinity, -kInfinity};
+  const auto add = [&](const Vec2& x) {
+    const double u = tangent.dot(x);
+    span.lo = std::min(span.lo, u);
+    span.hi = std::max(span.hi, u);
+  };
+  for (int k = 0; k < q.n; ++k) {
+    const Vec2 x0 = q.at(k) - p0, x1 = q.at(k + 1) - p0;
+    const double h0 = normal.dot(x0) - eta, h1 = normal.dot(x1) - eta;
+    if (h0 <= 0.0) add(x0);
+    if ((h0 < 0.0) != (h1 < 0.0) && h0 != h1) add(x0 + (h0 / (h0 - h1)) * (x1 - x0));
+  }
+  return span;
+}
+
+}  // namespace ddafit::face_axes

@@ -1,0 +1,111 @@
+// The faces of a convex polygon as separating axes, and what the flush rules of
+// manifold.hpp ("Flush neighbours", "Flush faces") read from them: the narrow phase's first
+// half (collide_polygons in manifold.cpp is the second: reference and incident faces,
+// clipping). Internal to the contact stage.
+#pragma once
+
+#include <limits>
+#include <span>
+
+#include "forward/scene.hpp"
+
+namespace ddafit::face_axes {
+
+inline constexpr double kInfinity = std::numeric_limits<double>::infinity();
+
+inline double cross(const Vec2& u, const Vec2& v) { return u.x() * v.y() - u.y() * v.x(); }
+
+// Outward direction of an edge of a counter-clockwise polygon: its right-hand side.
+inline Vec2 outward(const Vec2& edge) { return Vec2(edge.y(), -edge.x()); }
+
+// A polygon seen from a's first vertex: the polygons are metres across but their
+// coordinates reach ~3000 m, so differences are taken once, near the origin.
+struct Shape {
+  std::span<const Vec2> v;
+  Vec2 origin;
+  int n = 0;
+  // i in [0, 2n): a wrap by subtraction, not %, which was a tenth of the narrow phase.
+  Vec2 at(int i) const { return v[static_cast<size_t>(i < n ? i : i - n)] - origin; }
+};
+
+struct Axis {
+  int edge = -1;                   // the best axis that may be a reference face (long enough)
+  double separation = -kInfinity;  // its separation
+  double apart = -kInfinity;       // the best separation over every solid axis (cuts are no axis here)
+  bool flush_beside = false;       // "Flush neighbours" (manifold.hpp) holds for one of p's faces
+  // q lies along one of p's faces: its part within kRideDepth x eta of the face's line (or
+  // below it) reaches more than eta along the face. The two touch there, whatever another
+  // face's line says: they are no sliver (collide_polygons).
+  bool rides = false;
+  // "Flush faces" (manifold.hpp): of the faces of p whose line q lies against (its gap
+  // within eta / 10 on either side), the best (flush_better); -1 if none. A face q lies
+  // beside is a candidate too; it matters only where the pair is no sliver (collide_polygons).
+  int flush_edge = -1;
+  double flush_gap = kInfinity;
+  double flush_support = 0.0;  // how well its normal agrees with the pair's supports
+};
+
+// Flush faces are ranked by how well their normal (from p towards q) agrees with the way
+// the two blocks were held up in the last step (ManifoldSettings::support_*): a block that
+// rests on a surface meets the next block of it through its face, not its side, when its
+// corner crosses the joint. Only while both gaps are within kRideDepth x eta: a corner
+// deeper under a face has met a step, whose side is the contact (a block riding up a 2 mm
+// step under a 1.2 m block was kicked off it by the implicit solver's penalty spring).
+// Otherwise, and within kSupportTie of each other, the face q lies closer to the line of
+// (least |gap|).
+inline constexpr double kSupportTie = 0.05;
+inline constexpr double kRideDepth = 0.1;
+// "Flush neighbours" (manifold.hpp) empties the manifold of a corner sliver: a pair whose
+// separation over every solid axis is no deeper than this share of eta. A quarter: a block
+// resting on a flush surface overlaps it by its resting overlap (about 1e-4 of its size, 1/200
+// of eta at the default ratio), and a quarter of eta is half the 1 % overlap the runs are held to.
+inline constexpr double kSliverDepth = 0.25;
+bool flush_better(double support, double gap, double than_support, double than_gap, double eta, double slop);
+
+// A face: the run of edges from vertex `first` to vertex `last` (counter-clockwise).
+struct Face {
+  int first = 0;
+  int last = 0;
+};
+
+// Grows an edge over its neighbours while they continue its line within `flat`. Without
+// this a straight vertex in the middle of a side would make the reference face half a
+// side, and a block resting on that side would be held at one half only.
+Face grow_face(const Shape& p, int edge, double flat);
+
+// The span along a face's line of the part of q within eta of the line, or below it:
+// q clipped to the band h <= eta, h = normal . (x - p0). Its vertices in the band and
+// the points where its edges leave the band, projected on the tangent from p0.
+struct Span {
+  double lo, hi;
+};
+Span near_line_span(const Shape& q, const Vec2& p0, const Vec2& normal, const Vec2& tangent, double eta);
+
+// The length of edge i of p grown over its collinear neighbours (grow_face).
+double face_length(const Shape& p, int i, double flat);
+
+// The edge of p whose normal separates q from p the most. p's own extent beyond the
+// edge along that normal is subtracted: it is zero for a convex polygon, but keeps the
+// value a true lower bound of the gap if a nearly straight vertex leaves a tiny edge
+// whose normal points anywhere. Stops early once the separation passes `apart` (no
+// contact then; the caller only needs to know that).
+// With eta > 0 it also reads the faces q lies against (its gap within eta on either
+// side; manifold.hpp, "Flush neighbours" and "Flush faces"): the gap is at hand, and only
+// such faces need q's span along them.
+struct AxisLimits {
+  double tiny = 0.0;   // an edge shorter than this has no direction
+  double apart = 0.0;  // the margin beyond which there is no contact
+  double eta = 0.0;    // the flush tolerance
+  double flat = 0.0;   // a face's straightness (grow_face)
+  bool flush_faces = true;  // ManifoldSettings::flush_faces
+  // The supports of p's and q's blocks (ManifoldSettings::support_a/b): a normal from p
+  // towards q agrees with q's support, or against p's.
+  Vec2 support_p = Vec2::Zero(), support_q = Vec2::Zero();
+};
+Axis best_axis(const Shape& p, std::span<const char> solid, const Shape& q, const AxisLimits& limits);
+
+// True when some cut of p (solid[i] false; manifold.hpp, "Solid edges") has q wholly beyond
+// it, within slop.
+bool cut_separates(const Shape& p, const Shape& q, double tiny, std::span<const char> solid, double slop);
+
+}  // namespace ddafit::face_axes
