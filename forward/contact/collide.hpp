@@ -39,8 +39,8 @@ struct CollideSettings {
 
 // Replaces `contacts` (the last step's, manifolds sorted by piece pair, histories by key)
 // with this step's. The detection's `geometry`, `previous` and `previous_histories` are
-// scratch kept between calls (their memory is reused). Returns an empty string, or a description of two touching blocks that have
-// no interface.
+// scratch kept between calls (their memory is reused). Returns an empty string, or a
+// description of two touching blocks that have no interface.
 struct ContactDetection {
   ContactShapes shapes;      // build_shapes(), once per run
   CollideSettings settings;  // first_step is cleared after each detection

@@ -14,7 +14,7 @@ bool flush_better(double support, double gap, double than_support, double than_g
 Face grow_face(const Shape& p, int edge, double flat) {
   const Vec2 p0 = p.at(edge), t = (p.at(edge + 1) - p0).normalized();
   const auto on_line = [&](int from, int to, int test) {
-    return std::abs(cross(t, p.at(test) - p0)) <= flat && t.dot(p.at(to) - p.at(from)) > 0.0;
+    return std::abs(cross2(t, p.at(test) - p0)) <= flat && t.dot(p.at(to) - p.at(from)) > 0.0;
   };
   Face f{edge, (edge + 1) % p.n};
   // Leave at least two edges outside the face: beyond that the polygon has no area.

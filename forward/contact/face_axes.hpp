@@ -7,13 +7,12 @@
 #include <limits>
 #include <span>
 
+#include "forward/kinematics.hpp"
 #include "forward/scene.hpp"
 
 namespace ddafit::face_axes {
 
 inline constexpr double kInfinity = std::numeric_limits<double>::infinity();
-
-inline double cross(const Vec2& u, const Vec2& v) { return u.x() * v.y() - u.y() * v.x(); }
 
 // Outward direction of an edge of a counter-clockwise polygon: its right-hand side.
 inline Vec2 outward(const Vec2& edge) { return Vec2(edge.y(), -edge.x()); }

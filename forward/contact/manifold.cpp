@@ -180,7 +180,8 @@ Manifold collide_polygons(std::span<const Vec2> a, std::span<const Vec2> b, cons
   // face across the kink and had no contact: on Vajont section V (reference) a 125 m2
   // block lay beside the end of a bedrock face within eta (22 cm for it) and sank 20 cm
   // into the bedrock piece's next face unseen.
-  const bool sliver = !axis_a.rides && !axis_b.rides && std::max(axis_a.apart, axis_b.apart) > -kSliverDepth * eta;
+  const bool sliver =
+      !axis_a.rides && !axis_b.rides && std::max(axis_a.apart, axis_b.apart) > -kSliverDepth * eta;
   if ((axis_a.flush_beside || axis_b.flush_beside) && sliver) return m;
 
   // Flush faces (manifold.hpp): a polygon lying against the line of a face (within eta),

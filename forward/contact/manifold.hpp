@@ -91,9 +91,9 @@ struct ManifoldSettings {
 // blocks): before it crosses, its leading corner sits just below the next block's corner
 // (by its own resting overlap), and the separating axis alone would take the joint face
 // (or the slider's front face) as the contact face and throw the block back. Once it has
-// crossed, the next block's face lies under it and the separating axis takes that face. It needs no knowledge of the block the
-// slider rests on: the slider lies along the next block's face line, beside the face. A
-// real step is higher than eta: the slider then reaches below T's line by the step's
+// crossed, the next block's face lies under it and the separating axis takes that face. It
+// needs no knowledge of the block the slider rests on: the slider lies along the next
+// block's face line, beside the face. A real step is higher than eta: the slider then reaches below T's line by the step's
 // height, the rule does not apply, and the step's face stops it. A block above T by more
 // than eta (a step down, a block in flight) is no neighbour either, and keeps its
 // speculative contacts. A kink of the surface at the joint is covered too: at a concave kink

@@ -49,8 +49,7 @@ void heat_shear_band(const BlockSystem& s, const ContactSet& contacts, SlipHisto
 
 }  // namespace
 
-void assign_histories(const BlockSystem& s, ContactSet& contacts, std::vector<SlipHistory>& scratch) {
-  std::vector<SlipHistory>& previous = scratch;  // the last step's histories, by key
+void assign_histories(const BlockSystem& s, ContactSet& contacts, std::vector<SlipHistory>& previous) {
   previous.swap(contacts.histories);
   std::vector<SlipHistory>& histories = contacts.histories;
   histories.clear();

@@ -24,8 +24,9 @@ inline std::uint64_t slip_history_key(int face_vertex, int interface) {
 // key had in contacts.histories (the last step's), or a new one with no slip and d_c from the
 // overriding block's length along the contact. Replaces contacts.histories with the
 // histories in use, sorted by key, and sets each manifold's friction coefficient.
-// `scratch` holds the last step's histories meanwhile (its memory is reused between calls).
-void assign_histories(const BlockSystem& system, ContactSet& contacts, std::vector<SlipHistory>& scratch);
+// `previous` is scratch: it holds the last step's histories meanwhile (its memory is reused
+// between calls).
+void assign_histories(const BlockSystem& system, ContactSet& contacts, std::vector<SlipHistory>& previous);
 
 // The diffusion grid of every thermal_pressurization interface for a run of `duration` s.
 void prepare_shear_bands(const BlockSystem& system, double duration, ContactSet& contacts);
