@@ -88,7 +88,7 @@ struct SimulationOptions {
   int substeps = 4;
 
   // control.contact_passes: most passes over each manifold's points per sweep, stopping
-  // when a pass changes no impulse by more than 1e-3 of the manifold's largest normal
+  // when a pass changes no impulse by more than 1e-2 of the manifold's largest normal
   // impulse (forward/substep/solve_contacts.cpp). One pass (model revision 2026-11-25.3 and
   // before) leaves the coupling of a manifold's normal and friction impulses through the
   // block's rotation unconverged at an impact: a block landing on a 2:1 slope of friction

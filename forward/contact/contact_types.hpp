@@ -28,6 +28,10 @@ struct ContactShapes {
   // Per corner: 1 if the edge to the next corner is part of the block's boundary, 0 if it
   // is a cut between two pieces of the block (manifold.hpp, solid edges).
   std::vector<char> solid;
+  // Per corner: 1 if the block's polygon turns inward there (a reflex corner, where the
+  // block is concave and a cut starts). Seen from outside the block such a corner is no
+  // corner: the faces on either side of it meet in a hollow (manifold.hpp, "Reflex corners").
+  std::vector<char> reflex;
 };
 
 enum class ContactState : std::uint8_t { Open, Sliding, Locked };

@@ -31,7 +31,20 @@ Face grow_face(const Shape& p, int edge, double flat) {
   return f;
 }
 
-Axis best_axis(const Shape& p, std::span<const char> solid, const Shape& q, const AxisLimits& limits) {
+namespace {
+
+// A reflex corner of q's block within eta of the line (or behind it): q's surface there is a
+// hollow, no face lying along the line.
+bool hollow_near(const Shape& q, std::span<const char> q_reflex, const Vec2& p0, const Vec2& normal, double eta) {
+  for (int k = 0; k < q.n && !q_reflex.empty(); ++k)
+    if (q_reflex[static_cast<size_t>(k)] && normal.dot(q.at(k) - p0) <= eta) return true;
+  return false;
+}
+
+}  // namespace
+
+Axis best_axis(const Shape& p, std::span<const char> solid, std::span<const char> reflex, const Shape& q,
+               std::span<const char> q_reflex, const AxisLimits& limits) {
   const double tiny = limits.tiny, apart = limits.apart, eta = limits.eta, flat = limits.flat;
   Axis best;
   for (int i = 0; i < p.n; ++i) {
@@ -52,7 +65,15 @@ Axis best_axis(const Shape& p, std::span<const char> solid, const Shape& q, cons
       // No early exit here: the rule holds only for a sliver (collide_polygons), which
       // needs every face and the separation over every axis.
       const double along = std::min(near.hi, to) - std::max(near.lo, from);
-      if (along <= 0.0) best.flush_beside = true;
+      // Beside an end of the face that is a reflex corner of p's block, q is in the mouth of
+      // a hollow (the foot of a bank, where the floor meets it); with a reflex corner of its
+      // own near the line, q's hollow lies against the face's end. Either way the two are
+      // no neighbours along one surface but a block arriving at a face (manifold.hpp,
+      // "Reflex corners").
+      const int end = near.hi <= from ? f.first : f.last;
+      if (along <= 0.0 && (reflex.empty() || !reflex[static_cast<size_t>(end)]) &&
+          !hollow_near(q, q_reflex, p0, normal, eta))
+        best.flush_beside = true;
       // Close to the line only: a joint meeting the surface at 30 deg has the slider's
       // bottom within eta of its line for 2 eta, which is no riding along it.
       if (along > eta && !best.rides) {

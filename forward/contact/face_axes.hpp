@@ -101,7 +101,11 @@ struct AxisLimits {
   // towards q agrees with q's support, or against p's.
   Vec2 support_p = Vec2::Zero(), support_q = Vec2::Zero();
 };
-Axis best_axis(const Shape& p, std::span<const char> solid, const Shape& q, const AxisLimits& limits);
+// `reflex` and `q_reflex` mark the corners that are reflex corners of their blocks (empty:
+// none): q beside such an end of a face, or with such a corner near the face's line, is no
+// flush neighbour.
+Axis best_axis(const Shape& p, std::span<const char> solid, std::span<const char> reflex, const Shape& q,
+               std::span<const char> q_reflex, const AxisLimits& limits);
 
 // True when some cut of p (solid[i] false; manifold.hpp, "Solid edges") has q wholly beyond
 // it, within slop.

@@ -82,7 +82,7 @@ Ends closest_ends(const Vec2& p1, const Vec2& q1, const Vec2& p2, const Vec2& q2
 // slab gives its end nearest the slab (overlapping corners, or round-off). Points deeper
 // than `max_depth` are dropped when `limit_depth` (see "Solid edges" in manifold.hpp).
 void clip_face_contact(const Shape& ref, const Face& rf, const Shape& inc, const Face& incf, int ref_owner,
-                       const ManifoldSettings& settings, bool limit_depth, Manifold& m) {
+                       const ManifoldSettings& settings, bool limit_depth, const bool reflex_end[2], Manifold& m) {
   struct Candidate {
     Vec2 at;
     int owner, vertex, other;
@@ -105,13 +105,17 @@ void clip_face_contact(const Shape& ref, const Face& rf, const Shape& inc, const
     const double beyond = u21 <= 0.0 ? -u21 : u22 - ref_length;
     if (beyond < settings.max_distance) c[count++] = u21 <= 0.0 ? inc_first : inc_last;
   } else {
-    // The incident face runs against the tangent: v22 is the end near v11.
-    if (u22 < 0.0) {
+    // The incident face runs against the tangent: v22 is the end near v11. Past an end of
+    // the face that is a reflex corner the face's polygon continues in another face (the
+    // floor at the foot of a bank): an incident corner there within the margin is itself
+    // the point, at its distance from the face's line, the speculative contact of a corner
+    // sliding along that other face into this one (manifold.hpp, "Reflex corners").
+    if (u22 < 0.0 && !(reflex_end[0] && -u22 < settings.max_distance)) {
       c[count++] = {v22 + (-u22 / (u21 - u22)) * (v21 - v22), ref_owner, rf.first, incf.first};
     } else {
       c[count++] = inc_last;
     }
-    if (u21 > ref_length) {
+    if (u21 > ref_length && !(reflex_end[1] && u21 - ref_length < settings.max_distance)) {
       c[count++] = {v21 + ((u21 - ref_length) / (u21 - u22)) * (v22 - v21), ref_owner, rf.last, incf.first};
     } else {
       c[count++] = inc_first;
@@ -136,7 +140,8 @@ void clip_face_contact(const Shape& ref, const Face& rf, const Shape& inc, const
 }  // namespace
 
 Manifold collide_polygons(std::span<const Vec2> a, std::span<const Vec2> b, const ManifoldSettings& settings,
-                          std::span<const char> a_solid, std::span<const char> b_solid) {
+                          std::span<const char> a_solid, std::span<const char> b_solid,
+                          std::span<const char> a_reflex, std::span<const char> b_reflex) {
   Manifold m;
   const double max_distance = settings.max_distance, linear_slop = settings.linear_slop;
   if (a.size() < 3 || b.size() < 3) return m;
@@ -154,9 +159,9 @@ Manifold collide_polygons(std::span<const Vec2> a, std::span<const Vec2> b, cons
   // blocks (where joints met a side), and a face split there gave a sliver lying along it
   // contact on one half only: its tip sank 18 cm into the other half.
   const double eta = settings.flush_tolerance, flat = std::max(1e-3 * linear_slop, 0.25 * eta);
-  const Axis axis_a = best_axis(sa, a_solid, sb, {tiny, max_distance, eta, flat, settings.flush_faces, settings.support_a, settings.support_b});
+  const Axis axis_a = best_axis(sa, a_solid, a_reflex, sb, b_reflex, {tiny, max_distance, eta, flat, settings.flush_faces, settings.support_a, settings.support_b});
   if (axis_a.apart > max_distance) return m;
-  const Axis axis_b = best_axis(sb, b_solid, sa, {tiny, max_distance, eta, flat, settings.flush_faces, settings.support_b, settings.support_a});
+  const Axis axis_b = best_axis(sb, b_solid, b_reflex, sa, a_reflex, {tiny, max_distance, eta, flat, settings.flush_faces, settings.support_b, settings.support_a});
   if (axis_a.edge < 0 && axis_b.edge < 0) return m;
   if (axis_b.apart > max_distance) return m;
   const auto cut_in = [](std::span<const char> solid) {
@@ -169,7 +174,14 @@ Manifold collide_polygons(std::span<const Vec2> a, std::span<const Vec2> b, cons
   // small block sliding on one piece past the reflex corner where a cut starts was read
   // 0.62 m "deep" in the neighbouring piece (no solid axis separated them) and stopped
   // Vajont sections VI, IX and X with overlaps of 25 % of a block that did not exist.
-  if (has_cuts && (cut_separates(sa, sb, tiny, a_solid, linear_slop) || cut_separates(sb, sa, tiny, b_solid, linear_slop)))
+  // Not for a polygon that no solid axis finds deeper than a sliver (kSliverDepth x eta):
+  // beyond a cut but within the margin of the face that starts where the cut meets the
+  // surface, it is the speculative contact with that face. A block sliding along a valley
+  // floor towards a bank lies beyond the cut from the bank's foot (for a bank at 30 deg the
+  // cut runs down under the floor) and met the bank only once its corner was in it.
+  const bool overlapped = std::max(axis_a.apart, axis_b.apart) <= -kSliverDepth * eta;
+  if (has_cuts && overlapped &&
+      (cut_separates(sa, sb, tiny, a_solid, linear_slop) || cut_separates(sb, sa, tiny, b_solid, linear_slop)))
     return m;
 
   // Flush neighbours: two polygons along one surface line touch only at a corner sliver.
@@ -190,8 +202,8 @@ Manifold collide_polygons(std::span<const Vec2> a, std::span<const Vec2> b, cons
   // otherwise: a unless b's axis is clearly better, so that two equally good axes do not
   // swap the reference (and the point ids) from one call to the next.
   const bool flush_face = axis_a.flush_edge >= 0 || axis_b.flush_edge >= 0;
-  const int edge_a = flush_face ? axis_a.flush_edge : axis_a.edge;
-  const int edge_b = flush_face ? axis_b.flush_edge : axis_b.edge;
+  int edge_a = flush_face ? axis_a.flush_edge : axis_a.edge;
+  int edge_b = flush_face ? axis_b.flush_edge : axis_b.edge;
   const bool better_b = flush_face ? axis_b.flush_edge >= 0 &&
                                          flush_better(axis_b.flush_support, axis_b.flush_gap, axis_a.flush_support,
                                                       axis_a.flush_gap, eta, 0.1 * linear_slop)
@@ -210,41 +222,78 @@ Manifold collide_polygons(std::span<const Vec2> a, std::span<const Vec2> b, cons
   // read the opposite bank's face as turned away from it, got no point, and went into the
   // bank (the first axis was its own face; the bank piece's side facing it was a cut).
   if (settings.flip_for_cuts && incident.facing > 0.0) {
-    if ((flip ? edge_a : edge_b) < 0) return m;
+    // The other polygon's flush face, else its best axis: a toe block lying against the
+    // line of its own face through the foot of Vajont section VII's bank (which has no
+    // face the block lies against) met only the bank piece's cut, and lost the contact.
+    int& other = flip ? edge_a : edge_b;
+    if (other < 0) other = flip ? axis_a.edge : axis_b.edge;
+    if (other < 0) return m;
     flip = !flip;
     incident = incident_for(flip);
     if (incident.edge < 0 || incident.facing > 0.0) return m;
   }
-  const Shape& ref = flip ? sb : sa;
-  const Shape& inc = flip ? sa : sb;
-  const int ref_owner = flip ? 1 : 0, inc_owner = 1 - ref_owner;
-  const Face rf = grow_face(ref, flip ? edge_b : edge_a, flat);
-  const Face incf = grow_face(inc, incident.edge, flat);
-
-  // Apart, corner facing corner: one point, normal along the line joining the corners.
-  // The gap exceeds 0.1 x linear_slop here, so that line has a well-defined direction.
-  // Not against a flush face: a corner arriving at the joint of a concave kink heads
-  // straight at the next block's corner, and the line joining them points back.
-  if (!flush_face && std::max(axis_a.apart, axis_b.apart) > 0.1 * linear_slop) {
-    const Ends ends = closest_ends(ref.at(rf.first), ref.at(rf.last), inc.at(incf.first), inc.at(incf.last));
-    if (ends.on1 >= 0) {
+  const auto reflex_at = [&](int owner, int vertex) {
+    const std::span<const char> r = owner == 0 ? a_reflex : b_reflex;
+    return !r.empty() && r[static_cast<size_t>(vertex)] != 0;
+  };
+  // The contact with the reference face of polygon `flip ? b : a` and the incident face.
+  // `hollow` is set when the closest feature of the incident polygon is a reflex corner.
+  bool hollow = false;
+  const auto contact = [&](bool f, const Incident& incident_face) {
+    Manifold out;
+    const Shape& ref = f ? sb : sa;
+    const Shape& inc = f ? sa : sb;
+    const int ref_owner = f ? 1 : 0, inc_owner = 1 - ref_owner;
+    const Face rf = grow_face(ref, f ? edge_b : edge_a, flat);
+    const Face incf = grow_face(inc, incident_face.edge, flat);
+    // Apart, corner facing corner: one point, normal along the line joining the corners.
+    // The gap exceeds 0.1 x linear_slop here, so that line has a well-defined direction.
+    // Not against a flush face: a corner arriving at the joint of a concave kink heads
+    // straight at the next block's corner, and the line joining them points back. Not at a
+    // reflex corner (manifold.hpp): a block's corner arriving along a valley floor at the
+    // foot of a bank faced the bank piece's end, and the level line joining them stopped
+    // it as a wall would instead of the bank's face turning it up the slope.
+    if (!flush_face && std::max(axis_a.apart, axis_b.apart) > 0.1 * linear_slop) {
+      const Ends ends = closest_ends(ref.at(rf.first), ref.at(rf.last), inc.at(incf.first), inc.at(incf.last));
       const int ref_vertex = ends.on1 == 1 ? rf.last : rf.first;
       const int inc_vertex = ends.on2 == 1 ? incf.last : incf.first;
-      const Vec2 corner = ref.at(ref_vertex), d = inc.at(inc_vertex) - corner;
-      const double distance = d.norm();
-      if (!(distance < max_distance)) return Manifold{};
-      m.normal = (flip ? Vec2(-d) : d) / distance;
-      m.points[0] = {origin + corner + 0.5 * d, distance,
-                     manifold_id(inc_owner, inc_vertex, ref_vertex, true), inc_owner, inc_vertex};
-      m.point_count = 1;
-      m.reference = ref_owner;
-      m.reference_face = rf.first;
-      m.incident_face = incf.first;
-      return m;
+      if (ends.on1 >= 0 && reflex_at(inc_owner, inc_vertex)) {
+        hollow = true;
+        return out;
+      }
+      if (ends.on1 >= 0 && !reflex_at(ref_owner, ref_vertex)) {
+        const Vec2 corner = ref.at(ref_vertex), d = inc.at(inc_vertex) - corner;
+        const double distance = d.norm();
+        if (!(distance < max_distance)) return out;
+        out.normal = (f ? Vec2(-d) : d) / distance;
+        out.points[0] = {origin + corner + 0.5 * d, distance,
+                         manifold_id(inc_owner, inc_vertex, ref_vertex, true), inc_owner, inc_vertex};
+        out.point_count = 1;
+        out.reference = ref_owner;
+        out.reference_face = rf.first;
+        out.incident_face = incf.first;
+        return out;
+      }
     }
-  }
-  clip_face_contact(ref, rf, inc, incf, ref_owner, settings, has_cuts, m);
-  return m;
+    const bool reflex_end[2] = {reflex_at(ref_owner, rf.first), reflex_at(ref_owner, rf.last)};
+    clip_face_contact(ref, rf, inc, incf, ref_owner, settings, has_cuts, reflex_end, out);
+    for (int k = 0; k < out.point_count; ++k)
+      hollow = hollow || (out.points[k].owner == inc_owner && reflex_at(inc_owner, out.points[k].vertex));
+    return out;
+  };
+  m = contact(flip, incident);
+  // Reflex corners (manifold.hpp): a point at a reflex corner of the incident polygon is
+  // that polygon's hollow pressing on the reference face, which no body can do; the
+  // contact there is the incident block's face against the other's corner. A toe block
+  // whose corner had passed the foot of a vertical bank was pushed off the foot's "corner"
+  // along its own leaning face, down and back, instead of out of the bank's face.
+  if (!hollow) return m;
+  int& other = flip ? edge_a : edge_b;
+  if (other < 0) other = flip ? axis_a.edge : axis_b.edge;
+  if (other < 0) return m;
+  const Incident turned = incident_for(!flip);
+  if (turned.edge < 0 || turned.facing > 0.0) return m;
+  return contact(!flip, turned);
 }
 
 }  // namespace ddafit

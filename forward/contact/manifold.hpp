@@ -129,6 +129,7 @@ struct ManifoldSettings {
 // that far into another, and such a point is a corner read across a cut, inside the
 // block (one read 18 m "deep" on Vajont section I).
 Manifold collide_polygons(std::span<const Vec2> a, std::span<const Vec2> b, const ManifoldSettings& settings,
-                          std::span<const char> a_solid = {}, std::span<const char> b_solid = {});
+                          std::span<const char> a_solid = {}, std::span<const char> b_solid = {},
+                          std::span<const char> a_reflex = {}, std::span<const char> b_reflex = {});
 
 }  // namespace ddafit

@@ -5,6 +5,7 @@
 #include <numeric>
 
 #include "forward/contact/contact_law.hpp"
+#include "forward/parallel.hpp"
 
 namespace ddafit {
 namespace {
@@ -132,16 +133,26 @@ void advance_histories(const BlockSystem& s, ContactSet& contacts, double durati
         gather_slip(h, m.points[q].slip);
         if (!h.band_column.empty()) h.normal_load += m.points[q].normal_load;
       }
+  // Each face's law on its own: parallel, and the same numbers on any thread count.
+  std::vector<SlipHistory>& histories = contacts.histories;
+  const long n = static_cast<long>(histories.size());
   bool any = false;
-  for (SlipHistory& h : contacts.histories) {
+#pragma omp parallel for schedule(static) reduction(|| : any) if (n >= kParallelMinimum)
+  for (long k = 0; k < n; ++k) {
+    SlipHistory& h = histories[k];
     if (!h.band_column.empty()) heat_shear_band(s, contacts, h, duration);
     add_slip(h, duration);
     refresh_friction(s, h);
     any = any || h.changed;
   }
   if (!any) return;
-  for (ContactManifold& m : contacts.manifolds)
-    if (m.history >= 0 && contacts.histories[m.history].changed) m.friction = contacts.histories[m.history].friction;
+  std::vector<ContactManifold>& manifolds = contacts.manifolds;
+  const long count = static_cast<long>(manifolds.size());
+#pragma omp parallel for schedule(static) if (count >= kParallelMinimum)
+  for (long k = 0; k < count; ++k) {
+    ContactManifold& m = manifolds[k];
+    if (m.history >= 0 && histories[m.history].changed) m.friction = histories[m.history].friction;
+  }
 }
 
 }  // namespace ddafit
