@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <span>
 #include <string>
@@ -130,7 +131,8 @@ TEST(ValleyCorner, ABlockArrivingAtTheFootOfABankMeetsTheBanksFace) {
 // impact takes the velocity normal to the bank (with its friction impulse) the block runs
 // up with v_t = v0 (cos a - mu sin a), decelerating at g (sin a + mu cos a): its centroid
 // rises by v_t^2 sin a / (2 g (sin a + mu cos a)). The impact turns the block onto the
-// bank, which that estimate leaves out: held to half of it.
+// bank, which that estimate leaves out: held to half of it where it is over 0.5 m (at 60 deg
+// the block topples onto the bank and rises higher), and to v0^2 / 2g, all its energy.
 Scene valley_scene(double alpha, double v0, double step, Integrator integrator) {
   Scene s = verification::incline_scene({});
   s.blocks.clear();
@@ -160,15 +162,14 @@ TEST(ValleyCorner, ABlockSlidingIntoABankStaysOutOfItAndClimbsWhatItCan) {
           // Known defect (the implicit solver's locked shear springs at a corner pinned by
           // floor and bank): at 10 ms a block hitting a 60 deg bank at 20 m/s gains energy and
           // the run stops with the audit's diagnosis. It must stop so, never go into the bank.
-          if (integrator == Integrator::Implicit && step > 0.005 && r.summary.status == RunStatus::Failed) {
+          if (integrator == Integrator::Implicit && step > 0.005 && alpha == 60.0 && v0 == 20.0 &&
+              r.summary.status == RunStatus::Failed) {
             std::printf("[measured] %s: stopped: %s\n", label.c_str(), r.summary.message.c_str());
             EXPECT_NE(r.summary.message.find("creating energy"), std::string::npos) << label;
             continue;
           }
           ASSERT_EQ(r.summary.status, RunStatus::Completed) << label << ": " << r.summary.message;
-          if (integrator == Integrator::Substep) {
-            EXPECT_LE(r.summary.solver.worst_penetration_ratio, 0.01) << label;
-          }
+          EXPECT_LE(r.summary.solver.worst_penetration_ratio, 0.01) << label;
           double rise = 0.0;
           for (const auto& row : r.history) rise = std::max(rise, row.displacement.y());
           const double a = alpha * kDegree, vt = v0 * (std::cos(a) - mu * std::sin(a));
@@ -177,6 +178,8 @@ TEST(ValleyCorner, ABlockSlidingIntoABankStaysOutOfItAndClimbsWhatItCan) {
           if (estimate > 0.5) {
             EXPECT_GT(rise, 0.5 * estimate) << label;
           }
+          // Energy: the centroid (the measure point) can rise no higher than v0^2 / 2g.
+          EXPECT_LE(rise, v0 * v0 / (2.0 * g)) << label;
         }
 }
 

@@ -33,11 +33,17 @@ Face grow_face(const Shape& p, int edge, double flat) {
 
 namespace {
 
-// A reflex corner of q's block within eta of the line (or behind it): q's surface there is a
-// hollow, no face lying along the line.
-bool hollow_near(const Shape& q, std::span<const char> q_reflex, const Vec2& p0, const Vec2& normal, double eta) {
-  for (int k = 0; k < q.n && !q_reflex.empty(); ++k)
-    if (q_reflex[static_cast<size_t>(k)] && normal.dot(q.at(k) - p0) <= eta) return true;
+// A reflex corner of q's block within eta of the face's line, on either side, and within
+// `reach` of the face along it (the face spans [from, to] on the tangent from p0): q's
+// surface there is a hollow at the face's end, no face lying along the line.
+bool hollow_near(const Shape& q, std::span<const char> q_reflex, const Vec2& p0, const Vec2& normal,
+                 const Vec2& tangent, double from, double to, double eta, double reach) {
+  for (int k = 0; k < q.n && !q_reflex.empty(); ++k) {
+    if (!q_reflex[static_cast<size_t>(k)]) continue;
+    const Vec2 x = q.at(k) - p0;
+    const double u = tangent.dot(x);
+    if (std::abs(normal.dot(x)) <= eta && u >= from - reach && u <= to + reach) return true;
+  }
   return false;
 }
 
@@ -72,7 +78,7 @@ Axis best_axis(const Shape& p, std::span<const char> solid, std::span<const char
       // "Reflex corners").
       const int end = near.hi <= from ? f.first : f.last;
       if (along <= 0.0 && (reflex.empty() || !reflex[static_cast<size_t>(end)]) &&
-          !hollow_near(q, q_reflex, p0, normal, eta))
+          !hollow_near(q, q_reflex, p0, normal, tangent, from, to, eta, apart))
         best.flush_beside = true;
       // Close to the line only: a joint meeting the surface at 30 deg has the slider's
       // bottom within eta of its line for 2 eta, which is no riding along it.

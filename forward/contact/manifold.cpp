@@ -255,13 +255,11 @@ Manifold collide_polygons(std::span<const Vec2> a, std::span<const Vec2> b, cons
     // it as a wall would instead of the bank's face turning it up the slope.
     if (!flush_face && std::max(axis_a.apart, axis_b.apart) > 0.1 * linear_slop) {
       const Ends ends = closest_ends(ref.at(rf.first), ref.at(rf.last), inc.at(incf.first), inc.at(incf.last));
+      // closest_ends sets both ends or neither (on1 < 0: a closest point inside a face).
       const int ref_vertex = ends.on1 == 1 ? rf.last : rf.first;
       const int inc_vertex = ends.on2 == 1 ? incf.last : incf.first;
-      if (ends.on1 >= 0 && reflex_at(inc_owner, inc_vertex)) {
-        hollow = true;
-        return out;
-      }
-      if (ends.on1 >= 0 && !reflex_at(ref_owner, ref_vertex)) {
+      if (ends.on1 >= 0 && reflex_at(inc_owner, inc_vertex)) hollow = true;  // the face contact, then re-flipped
+      if (ends.on1 >= 0 && !reflex_at(inc_owner, inc_vertex) && !reflex_at(ref_owner, ref_vertex)) {
         const Vec2 corner = ref.at(ref_vertex), d = inc.at(inc_vertex) - corner;
         const double distance = d.norm();
         if (!(distance < max_distance)) return out;
@@ -293,7 +291,10 @@ Manifold collide_polygons(std::span<const Vec2> a, std::span<const Vec2> b, cons
   if (other < 0) return m;
   const Incident turned = incident_for(!flip);
   if (turned.edge < 0 || turned.facing > 0.0) return m;
-  return contact(!flip, turned);
+  // The first reading stays when the other face gives no point (within the margin and the
+  // depth kept): a contact read at a hollow is better than none.
+  const Manifold other_face = contact(!flip, turned);
+  return other_face.point_count > 0 ? other_face : m;
 }
 
 }  // namespace ddafit

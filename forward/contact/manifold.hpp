@@ -128,6 +128,16 @@ struct ManifoldSettings {
 // polygon has cuts, points deeper than max_depth are dropped: no step moves a block
 // that far into another, and such a point is a corner read across a cut, inside the
 // block (one read 18 m "deep" on Vajont section I).
+//
+// Reflex corners: `a_reflex[i]` / `b_reflex[i]` true marks corner i as a reflex corner of
+// its block (it turns inward there, and a cut starts there). Seen from outside, no corner:
+// it is never the end of a corner-to-corner contact, an incident point there hands the
+// reference to the other polygon, an incident corner beside a reflex end of the reference
+// face within the margin is itself the point (its distance from the face's line), and no
+// Flush neighbours beside a reflex end or with a reflex corner near the face's line. A cut
+// separates only a polygon overlapping deeper than a sliver (docs/theory.md §3, "Reflex
+// corners": a toe block sliding into the foot of Vajont section VII's bank lost its contact
+// and went into the bank at 10 ms steps).
 Manifold collide_polygons(std::span<const Vec2> a, std::span<const Vec2> b, const ManifoldSettings& settings,
                           std::span<const char> a_solid = {}, std::span<const char> b_solid = {},
                           std::span<const char> a_reflex = {}, std::span<const char> b_reflex = {});
