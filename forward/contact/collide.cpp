@@ -188,9 +188,10 @@ std::string collide(const BlockSystem& s, ContactDetection& detection, const std
     ms.flush_tolerance = settings.flush_ratio * size;
     ms.support_a = support[block_a];
     ms.support_b = support[block_b];
+    const int first_a = shapes.pieces[a].first, first_b = shapes.pieces[b].first;
     geometry[k] = collide_polygons(std::span<const Vec2>(corners_a, na), std::span<const Vec2>(corners_b, nb), ms,
-                                   solid.subspan(shapes.pieces[a].first, na), solid.subspan(shapes.pieces[b].first, nb),
-                                   reflex.subspan(shapes.pieces[a].first, na), reflex.subspan(shapes.pieces[b].first, nb));
+                                   solid.subspan(first_a, na), solid.subspan(first_b, nb), reflex.subspan(first_a, na),
+                                   reflex.subspan(first_b, nb));
   }
   std::vector<int> touching;
   for (long k = 0; k < n; ++k)

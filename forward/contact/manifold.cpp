@@ -159,9 +159,11 @@ Manifold collide_polygons(std::span<const Vec2> a, std::span<const Vec2> b, cons
   // blocks (where joints met a side), and a face split there gave a sliver lying along it
   // contact on one half only: its tip sank 18 cm into the other half.
   const double eta = settings.flush_tolerance, flat = std::max(1e-3 * linear_slop, 0.25 * eta);
-  const Axis axis_a = best_axis(sa, a_solid, a_reflex, sb, b_reflex, {tiny, max_distance, eta, flat, settings.flush_faces, settings.support_a, settings.support_b});
+  const AxisLimits limits_a{tiny, max_distance, eta, flat, settings.flush_faces, settings.support_a, settings.support_b};
+  const Axis axis_a = best_axis(sa, a_solid, a_reflex, sb, b_reflex, limits_a);
   if (axis_a.apart > max_distance) return m;
-  const Axis axis_b = best_axis(sb, b_solid, b_reflex, sa, a_reflex, {tiny, max_distance, eta, flat, settings.flush_faces, settings.support_b, settings.support_a});
+  const AxisLimits limits_b{tiny, max_distance, eta, flat, settings.flush_faces, settings.support_b, settings.support_a};
+  const Axis axis_b = best_axis(sb, b_solid, b_reflex, sa, a_reflex, limits_b);
   if (axis_a.edge < 0 && axis_b.edge < 0) return m;
   if (axis_b.apart > max_distance) return m;
   const auto cut_in = [](std::span<const char> solid) {
