@@ -200,8 +200,8 @@ std::string collide(const BlockSystem& s, ContactDetection& detection, const std
   std::vector<ContactManifold>& previous = detection.previous;
   previous.swap(contacts.manifolds);
   std::vector<ContactManifold>& manifolds = contacts.manifolds;
-  // Cleared in the parallel loop: clearing ~12 MB of manifolds on one thread was a tenth
-  // of detection on Vajont section VII.
+  // Cleared in the parallel loop rather than on one thread before it: about 12 MB of
+  // manifolds a step on Vajont section VII (docs/performance.md).
   manifolds.resize(touching.size());
   const long t = static_cast<long>(touching.size());
 #pragma omp parallel for schedule(static) if (t >= kParallelMinimum)
