@@ -6,6 +6,7 @@
 #include <span>
 
 #include "forward/contact/convex_pieces.hpp"
+#include "forward/kinematics.hpp"
 #include "forward/parallel.hpp"
 
 namespace ddafit {
@@ -19,7 +20,7 @@ constexpr double kReflexSine = 1e-3;
 bool reflex_corner(const std::vector<Vec2>& polygon, int k) {
   const int n = static_cast<int>(polygon.size());
   const Vec2 in = polygon[k] - polygon[(k + n - 1) % n], out = polygon[(k + 1) % n] - polygon[k];
-  return in.x() * out.y() - in.y() * out.x() < -kReflexSine * in.norm() * out.norm();
+  return cross2(in, out) < -kReflexSine * in.norm() * out.norm();
 }
 
 }  // namespace
