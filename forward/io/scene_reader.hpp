@@ -94,6 +94,7 @@ inline constexpr ControlKey kControlKeys[] = {
     {"reuse_factorization", &SimulationOptions::reuse_factorization},
     {"contact_hertz", &SimulationOptions::contact_hertz},
     {"contact_damping_ratio", &SimulationOptions::contact_damping_ratio},
+    {"split_impulses", &SimulationOptions::split_impulses},
     {"rigid_blocks", &SimulationOptions::rigid_blocks},
     {"contact_passes", &SimulationOptions::contact_passes},
     {"sleep_time", &SimulationOptions::sleep_time},

@@ -45,6 +45,17 @@ void integrate_positions(SweepState& st, double h, const std::vector<Vec3>& star
   }
 }
 
+void add_push_out_moves(SweepState& st, double h, std::vector<Vec3>& moves) {
+  const long n = static_cast<long>(st.velocity.size());
+#pragma omp parallel for schedule(static) if (n >= kParallelMinimum)
+  for (long b = 0; b < n; ++b) {
+    if (!st.masses[b].moves) continue;
+    const Vec3 push = h * st.push_velocity[b];
+    moves[b] += push;
+    st.step_moves[b] += push;
+  }
+}
+
 void move_blocks(BlockSystem& s, const SweepState& st, bool measured) {
   const long n = static_cast<long>(s.blocks.size());
 #pragma omp parallel for schedule(static) if (n >= kParallelMinimum)

@@ -32,6 +32,10 @@ void integrate_positions(SweepState& state, double h, const std::vector<Vec3>& s
 // move per step equals the substeps' moves in sequence. Sets the blocks' rates to the
 // sweeps' velocities (no strain rate). `measured` false (the quiet start) moves the
 // measurement points' origins with them.
+// Split impulses (control.split_impulses): each block also moves by h x its push-out velocity
+// (solve_contacts.hpp, push_out_overlaps), which is not kept.
+void add_push_out_moves(SweepState& state, double h, std::vector<Vec3>& moves);
+
 void move_blocks(BlockSystem& system, const SweepState& state, bool measured);
 
 }  // namespace ddafit

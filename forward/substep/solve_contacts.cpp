@@ -182,6 +182,36 @@ void solve_contacts(std::vector<ContactManifold>& manifolds, const std::vector<s
   for_each_coloured(colours, [&](int k) { solve_manifold(manifolds[k], st.deep[k], settings, inv_h, st); });
 }
 
+void push_out_overlaps(std::vector<ContactManifold>& manifolds, const std::vector<std::vector<int>>& colours,
+                       const SweepSettings& settings, SweepState& st) {
+  st.push_velocity.assign(st.velocity.size(), Vec3::Zero());
+  for_each_coloured(colours, [&](int k) {
+    ContactManifold& m = manifolds[k];
+    for (int q = 0; q < m.point_count; ++q) m.points[q].impulse.push_out = 0.0;
+    Vec3& ua = st.push_velocity[m.block_a];
+    Vec3& ub = st.push_velocity[m.block_b];
+    const BlockMass& ma = st.masses[m.block_a];
+    const BlockMass& mb = st.masses[m.block_b];
+    for (int pass = 0; pass < settings.manifold_passes; ++pass) {
+      double largest = 0.0, scale = 0.0;
+      for (int q = 0; q < m.point_count; ++q) {
+        ContactPoint& p = m.points[q];
+        const double excess = std::min(0.0, current_gap(m, p, st.step_moves) + settings.linear_slop);
+        const double target = std::min(-settings.softness.bias_rate * excess, settings.max_pushout_speed);
+        if (target <= 0.0 && p.impulse.push_out == 0.0) continue;
+        const double un = m.normal.dot(velocity_at(ub, p.rb) - velocity_at(ua, p.ra));
+        const double total = std::max(p.impulse.push_out + p.impulse.normal_mass * (target - un), 0.0);
+        const double change = total - p.impulse.push_out;
+        apply(ua, ub, ma, mb, p, change * m.normal);
+        p.impulse.push_out = total;
+        largest = std::max(largest, std::abs(change));
+        scale = std::max(scale, total);
+      }
+      if (largest <= kManifoldPassTolerance * scale) break;
+    }
+  });
+}
+
 void converge_deep(std::vector<ContactManifold>& manifolds, const SweepSettings& relax, int iterations,
                    SweepState& st) {
   std::vector<char> involved;

@@ -39,6 +39,7 @@ struct SweepState {
   std::vector<Vec3> step_moves;
   std::vector<BlockMass> masses;
   std::vector<Vec3> load_acceleration;  // per block, from loads other than gravity (water); empty if none
+  std::vector<Vec3> push_velocity;  // per block: this substep's push-out (control.split_impulses)
   std::vector<char> deep;  // per manifold: a point overlapped beyond its deep_overlap in a relax sweep of the step
 };
 
@@ -54,6 +55,15 @@ void solve_contacts(std::vector<ContactManifold>& manifolds, const std::vector<s
 // sweep at a mass ratio of 20): on Vajont section VIII a 1.7 m block was still being closed
 // on at 13 m/s and sank 5 % of its size. These few manifolds get the iterations they need,
 // the thousands of others the one sweep that suffices for them.
+// Split impulses (control.split_impulses; Catto 2006, Bullet's split impulse): after the
+// velocity sweeps, which push nothing out, one sweep over push-out velocities of their own,
+// starting from zero each substep. At a point overlapping beyond the slop its normal push-out
+// velocity becomes bias_rate x the excess (at most max_pushout_speed), with a push-out impulse
+// that never pulls. The blocks then move by h x these velocities as well (integrate.hpp) and
+// the velocities are dropped: a push-out moves blocks, it never speeds them up.
+void push_out_overlaps(std::vector<ContactManifold>& manifolds, const std::vector<std::vector<int>>& colours,
+                       const SweepSettings& settings, SweepState& state);
+
 void converge_deep(std::vector<ContactManifold>& manifolds, const SweepSettings& relax, int iterations,
                    SweepState& state);
 
