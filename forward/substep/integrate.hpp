@@ -27,15 +27,15 @@ void integrate_velocities(SweepState& state, const Vec2& gravity, double h, std:
 void integrate_positions(SweepState& state, double h, const std::vector<Vec3>& start_velocity,
                          std::vector<Vec3>& moves);
 
+// Split impulses (control.split_impulses): each block also moves by h x its push-out velocity
+// (solve_contacts.hpp, push_out_overlaps), which is not kept.
+void add_push_out_moves(SweepState& state, double h, std::vector<Vec3>& moves);
+
 // At the end of the step: moves every block by its step move with the exact rotation
 // about its centroid. Turns about the centroid and translations compose exactly, so one
 // move per step equals the substeps' moves in sequence. Sets the blocks' rates to the
 // sweeps' velocities (no strain rate). `measured` false (the quiet start) moves the
 // measurement points' origins with them.
-// Split impulses (control.split_impulses): each block also moves by h x its push-out velocity
-// (solve_contacts.hpp, push_out_overlaps), which is not kept.
-void add_push_out_moves(SweepState& state, double h, std::vector<Vec3>& moves);
-
 void move_blocks(BlockSystem& system, const SweepState& state, bool measured);
 
 }  // namespace ddafit

@@ -48,13 +48,6 @@ void warm_start(const std::vector<ContactManifold>& manifolds, const std::vector
 void solve_contacts(std::vector<ContactManifold>& manifolds, const std::vector<std::vector<int>>& colours,
                     const SweepSettings& settings, SweepState& state);
 
-// After a relax sweep: `iterations` more relax sweeps, on one thread and in order, over the
-// manifolds flagged deep (a point overlapping beyond its deep_overlap) and the other
-// manifolds of their blocks. One sweep per substep leaves the impulses of a light block
-// squeezed between heavy ones far from converged (Gauss-Seidel loses ~10 % of the error per
-// sweep at a mass ratio of 20): on Vajont section VIII a 1.7 m block was still being closed
-// on at 13 m/s and sank 5 % of its size. These few manifolds get the iterations they need,
-// the thousands of others the one sweep that suffices for them.
 // Split impulses (control.split_impulses; Catto 2006, Bullet's split impulse): after the
 // velocity sweeps, which push nothing out, one sweep over push-out velocities of their own,
 // starting from zero each substep. At a point overlapping beyond the slop its normal push-out
@@ -64,6 +57,13 @@ void solve_contacts(std::vector<ContactManifold>& manifolds, const std::vector<s
 void push_out_overlaps(std::vector<ContactManifold>& manifolds, const std::vector<std::vector<int>>& colours,
                        const SweepSettings& settings, SweepState& state);
 
+// After a relax sweep: `iterations` more relax sweeps, on one thread and in order, over the
+// manifolds flagged deep (a point overlapping beyond its deep_overlap) and the other
+// manifolds of their blocks. One sweep per substep leaves the impulses of a light block
+// squeezed between heavy ones far from converged (Gauss-Seidel loses ~10 % of the error per
+// sweep at a mass ratio of 20): on Vajont section VIII a 1.7 m block was still being closed
+// on at 13 m/s and sank 5 % of its size. These few manifolds get the iterations they need,
+// the thousands of others the one sweep that suffices for them.
 void converge_deep(std::vector<ContactManifold>& manifolds, const SweepSettings& relax, int iterations,
                    SweepState& state);
 
