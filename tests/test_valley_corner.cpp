@@ -159,15 +159,6 @@ TEST(ValleyCorner, ABlockSlidingIntoABankStaysOutOfItAndClimbsWhatItCan) {
                                     ", bank " + std::to_string(alpha) + " deg, " + std::to_string(v0) +
                                     " m/s, step " + std::to_string(step) + " s";
           const SimulationResult r = simulate(valley_scene(alpha, v0, step, integrator));
-          // Known defect (the implicit solver's locked shear springs at a corner pinned by
-          // floor and bank): at 10 ms a block hitting a 60 deg bank at 20 m/s gains energy and
-          // the run stops with the audit's diagnosis. It must stop so, never go into the bank.
-          if (integrator == Integrator::Implicit && step > 0.005 && alpha == 60.0 && v0 == 20.0 &&
-              r.summary.status == RunStatus::Failed) {
-            std::printf("[measured] %s: stopped: %s\n", label.c_str(), r.summary.message.c_str());
-            EXPECT_NE(r.summary.message.find("creating energy"), std::string::npos) << label;
-            continue;
-          }
           ASSERT_EQ(r.summary.status, RunStatus::Completed) << label << ": " << r.summary.message;
           EXPECT_LE(r.summary.solver.worst_penetration_ratio, 0.01) << label;
           double rise = 0.0;
@@ -181,6 +172,25 @@ TEST(ValleyCorner, ABlockSlidingIntoABankStaysOutOfItAndClimbsWhatItCan) {
           // Energy: the centroid (the measure point) can rise no higher than v0^2 / 2g.
           EXPECT_LE(rise, v0 * v0 / (2.0 * g)) << label;
         }
+}
+
+// The implicit solver's impact on a steep bank, as a class: banks of 55-65 deg, 10-25 m/s, steps
+// of 5-10 ms. Until the step's energy rule (forward/step/judge_step.cpp) three of these 36
+// (20 m/s at 10 ms on each bank) left the impact step at 26.5 m/s from 19.5 and the run
+// stopped with "contacts are creating energy": the corner met the bank mid-step and its
+// spring, loaded over the whole step, handed back more than the impact took. Now each
+// completes (the energy audit and the containment check run in every step) with overlaps
+// under 1 %.
+TEST(ValleyCorner, TheImplicitSolverMeetsASteepBankAtAnySpeedWithoutCreatingEnergy) {
+  for (const double alpha : {55.0, 60.0, 65.0})
+    for (const double v0 : {10.0, 15.0, 20.0, 25.0})
+      for (const double step : {0.005, 0.0075, 0.01}) {
+        const SimulationResult r = simulate(valley_scene(alpha, v0, step, Integrator::Implicit));
+        const std::string label = "bank " + std::to_string(alpha) + " deg, " + std::to_string(v0) + " m/s, step " +
+                                  std::to_string(step) + " s";
+        ASSERT_EQ(r.summary.status, RunStatus::Completed) << label << ": " << r.summary.message;
+        EXPECT_LE(r.summary.solver.worst_penetration_ratio, 0.01) << label;
+      }
 }
 
 }  // namespace
