@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "forward/common/displace_block.hpp"
+#include "forward/water/hydrostatic.hpp"
 
 namespace ddafit {
 namespace {
@@ -52,23 +53,28 @@ DeepestPoint max_penetration(const ImplicitStepContext& ctx, const StepParameter
   return deepest;
 }
 
-// Kinetic energy the attempt creates, J/m: its rise over the step less gravity's work on the
-// blocks' centroids (their rigid-body rows; strain rates carry no kinetic energy here, as in
-// the run's energy audit, forward/common/energy_check.hpp). The velocities are the step's own
-// update (update_blocks.cpp): v1 = 2 d / dt - v0. `scale` returns the step's kinetic energy
-// before plus the audit's floor, 1e-4 x weight x H, against which the gain is judged.
+// Kinetic energy the attempt creates, J/m: its rise over the step less the work of the
+// loads the step applied (assemble.cpp: gravity less the ground's acceleration on the
+// centroid, and the water's force and moment half a step ahead) over the blocks' rigid-body
+// moves. Strain rates carry no kinetic energy here, as in the run's energy audit
+// (forward/common/energy_check.hpp). The velocities are the step's own update
+// (update_blocks.cpp): v1 = 2 d / dt - v0. `scale` returns the kinetic energy before the step
+// plus the audit's floor, 1e-4 x weight x H, against which the gain is judged.
 double created_energy(const BlockSystem& s, const Eigen::VectorXd& d, const StepParameters& step, double* scale) {
   double created = 0.0, before = 0.0, weight = 0.0;
+  const double dt = step.time_step, g = step.gravity.norm();
   for (int b = 0; b < static_cast<int>(s.blocks.size()); ++b) {
     const Block& block = s.blocks[b];
     if (block.unknown < 0) continue;
     const Vec6 db = d.segment<6>(6 * block.unknown);
-    const Vec6 v1 = (2.0 / step.time_step) * db - block.velocity;
+    const Vec6 v1 = (2.0 / dt) * db - block.velocity;
     const double m = s.mass(b), inertia = s.density[block.material] * (block.s_xx + block.s_yy);
     const auto kinetic = [&](const Vec6& v) { return 0.5 * m * (v[0] * v[0] + v[1] * v[1]) + 0.5 * inertia * v[2] * v[2]; };
+    double work = m * (step.gravity - step.ground_acceleration).dot(db.head<2>());
+    if (s.water.present()) work += water_load(s, b, g, 0.5 * dt * block.velocity.head<3>()).head<3>().dot(db.head<3>());
     before += kinetic(block.velocity);
-    created += kinetic(v1) - kinetic(block.velocity) - m * step.gravity.dot(db.head<2>());
-    weight += m * step.gravity.norm();
+    created += kinetic(v1) - kinetic(block.velocity) - work;
+    weight += m * g;
   }
   *scale = before + 1e-4 * weight * s.half_model_size;
   return created;
