@@ -10,18 +10,16 @@
 #include <string>
 
 #include "forward/simulation.hpp"
+#include "verify/cases.hpp"
 
 namespace ddafit {
 namespace {
 
+// A w x h box with its lower-left corner at `corner` (verify/cases.hpp's block).
 BlockInput box_block(const std::string& name, Vec2 corner, double width, double height, bool fixed) {
-  BlockInput b;
-  b.name = name;
-  b.group = name;
-  b.material = 0;
-  b.fixed = fixed;
-  b.polygon = {corner, corner + Vec2(width, 0), corner + Vec2(width, height), corner + Vec2(0, height)};
-  return b;
+  return verification::block(name,
+                             {corner, corner + Vec2(width, 0), corner + Vec2(width, height), corner + Vec2(0, height)},
+                             fixed);
 }
 
 struct StepSetting {

@@ -8,17 +8,24 @@
 
 namespace ddafit {
 
+double block_kinetic_energy(const BlockSystem& s, int b, const Vec6& v) {
+  const Block& block = s.blocks[b];
+  const double inertia = s.density[block.material] * (block.s_xx + block.s_yy);
+  return 0.5 * s.mass(b) * (v[0] * v[0] + v[1] * v[1]) + 0.5 * inertia * v[2] * v[2];
+}
+
 double kinetic_energy(const BlockSystem& s) {
   double energy = 0.0;
-  for (int b = 0; b < static_cast<int>(s.blocks.size()); ++b) {
-    const Block& block = s.blocks[b];
-    if (block.fixed) continue;
-    const double m = s.mass(b);
-    const double inertia = s.density[block.material] * (block.s_xx + block.s_yy);
-    energy += 0.5 * m * (block.velocity[0] * block.velocity[0] + block.velocity[1] * block.velocity[1]) +
-              0.5 * inertia * block.velocity[2] * block.velocity[2];
-  }
+  for (int b = 0; b < static_cast<int>(s.blocks.size()); ++b)
+    if (!s.blocks[b].fixed) energy += block_kinetic_energy(s, b, s.blocks[b].velocity);
   return energy;
+}
+
+double energy_floor(const BlockSystem& s, const Vec2& gravity) {
+  double weight = 0.0;
+  for (int b = 0; b < static_cast<int>(s.blocks.size()); ++b)
+    if (!s.blocks[b].fixed) weight += s.mass(b) * gravity.norm();
+  return 1e-4 * weight * s.half_model_size;
 }
 
 double potential_energy(const BlockSystem& s, const Vec2& gravity) {
@@ -40,10 +47,7 @@ void add_load_work(EnergyAudit& audit, const BlockSystem& s, const Vec2& acceler
 }
 
 EnergyAudit start_energy_audit(const BlockSystem& s, const Vec2& gravity) {
-  double weight = 0.0;
-  for (int b = 0; b < static_cast<int>(s.blocks.size()); ++b)
-    if (!s.blocks[b].fixed) weight += s.mass(b) * gravity.norm();
-  return {kinetic_energy(s), potential_energy(s, gravity), 1e-4 * weight * s.half_model_size};
+  return {kinetic_energy(s), potential_energy(s, gravity), energy_floor(s, gravity)};
 }
 
 std::string check_energy(const EnergyAudit& audit, const BlockSystem& s, const Vec2& gravity) {

@@ -23,6 +23,11 @@ struct EnergyAudit {
 };
 
 double kinetic_energy(const BlockSystem& system);   // translation and rotation
+// One free block's kinetic energy at rates v (vx, vy, omega, ...), J/m: 1/2 m |v|^2 +
+// 1/2 rho (S_xx + S_yy) omega^2; strain rates are left out.
+double block_kinetic_energy(const BlockSystem& system, int block, const Vec6& v);
+// The audit's floor (EnergyAudit::floor): 1e-4 x sum m |g| x half the model size.
+double energy_floor(const BlockSystem& system, const Vec2& gravity);
 double potential_energy(const BlockSystem& system, const Vec2& gravity);
 
 // sum m x over the free blocks' centroids, kg m per metre of thickness.

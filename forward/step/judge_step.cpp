@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "forward/common/displace_block.hpp"
+#include "forward/common/energy_check.hpp"
 #include "forward/water/hydrostatic.hpp"
 
 namespace ddafit {
@@ -61,22 +62,19 @@ DeepestPoint max_penetration(const ImplicitStepContext& ctx, const StepParameter
 // (update_blocks.cpp): v1 = 2 d / dt - v0. `scale` returns the kinetic energy before the step
 // plus the audit's floor, 1e-4 x weight x H, against which the gain is judged.
 double created_energy(const BlockSystem& s, const Eigen::VectorXd& d, const StepParameters& step, double* scale) {
-  double created = 0.0, before = 0.0, weight = 0.0;
+  double created = 0.0, before = 0.0;
   const double dt = step.time_step, g = step.gravity.norm();
   for (int b = 0; b < static_cast<int>(s.blocks.size()); ++b) {
     const Block& block = s.blocks[b];
     if (block.unknown < 0) continue;
     const Vec6 db = d.segment<6>(6 * block.unknown);
-    const Vec6 v1 = (2.0 / dt) * db - block.velocity;
-    const double m = s.mass(b), inertia = s.density[block.material] * (block.s_xx + block.s_yy);
-    const auto kinetic = [&](const Vec6& v) { return 0.5 * m * (v[0] * v[0] + v[1] * v[1]) + 0.5 * inertia * v[2] * v[2]; };
-    double work = m * (step.gravity - step.ground_acceleration).dot(db.head<2>());
+    double work = s.mass(b) * (step.gravity - step.ground_acceleration).dot(db.head<2>());
     if (s.water.present()) work += water_load(s, b, g, 0.5 * dt * block.velocity.head<3>()).head<3>().dot(db.head<3>());
-    before += kinetic(block.velocity);
-    created += kinetic(v1) - kinetic(block.velocity) - work;
-    weight += m * g;
+    const double kinetic = block_kinetic_energy(s, b, block.velocity);
+    before += kinetic;
+    created += block_kinetic_energy(s, b, (2.0 / dt) * db - block.velocity) - kinetic - work;
   }
-  *scale = before + 1e-4 * weight * s.half_model_size;
+  *scale = before + energy_floor(s, step.gravity);
   return created;
 }
 

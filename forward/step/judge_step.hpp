@@ -2,7 +2,7 @@
 // docs/theory.md §8). Accept it; or try it again at the same length with a stiffer
 // penalty, when a contact went deeper than allowed and the penalty may still rise; or redo
 // it shorter, when the open-close iteration did not settle, a vertex moved further than
-// allowed, or a stiffer penalty no longer helps.
+// allowed, the step created kinetic energy, or a stiffer penalty no longer helps.
 #pragma once
 
 #include <string>
