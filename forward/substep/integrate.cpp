@@ -1,6 +1,8 @@
 #include "forward/substep/integrate.hpp"
 #include "forward/parallel.hpp"
 
+#include <cmath>
+
 #include "forward/common/displace_block.hpp"
 #include "forward/water/hydrostatic.hpp"
 
@@ -35,12 +37,25 @@ void integrate_velocities(SweepState& st, const Vec2& gravity, double h, std::ve
 }
 
 void integrate_positions(SweepState& st, double h, const std::vector<Vec3>& start_velocity,
-                         std::vector<Vec3>& moves) {
+                         std::vector<Vec3>& moves, double smooth_acceleration) {
   const long n = static_cast<long>(st.velocity.size());
 #pragma omp parallel for schedule(static) if (n >= kParallelMinimum)
   for (long b = 0; b < n; ++b) {
-    if (!st.masses[b].moves) continue;
-    moves[b] = 0.5 * h * (start_velocity[b] + st.velocity[b]);
+    const BlockMass& m = st.masses[b];
+    if (!m.moves) continue;
+    if (smooth_acceleration <= 0.0) {
+      moves[b] = 0.5 * h * (start_velocity[b] + st.velocity[b]);
+    } else {
+      Vec3 change = st.velocity[b] - start_velocity[b];
+      double limit = h * smooth_acceleration;
+      if (!st.load_acceleration.empty()) limit += 2.0 * h * st.load_acceleration[b].head<2>().norm();
+      const double linear = change.head<2>().norm();
+      if (linear > limit) change.head<2>() *= limit / linear;
+      // The same bound on the turn, through the radius of gyration k = sqrt(I / m).
+      const double k = m.inverse_inertia > 0.0 ? std::sqrt(m.inverse_mass / m.inverse_inertia) : 0.0;
+      if (k > 0.0 && std::abs(change[2]) * k > limit) change[2] *= limit / (std::abs(change[2]) * k);
+      moves[b] = h * st.velocity[b] - 0.5 * h * change;
+    }
     st.step_moves[b] += moves[b];
   }
 }

@@ -212,6 +212,22 @@ void push_out_overlaps(std::vector<ContactManifold>& manifolds, const std::vecto
   });
 }
 
+void flag_closing_deep(const std::vector<ContactManifold>& manifolds, double h, SweepState& st) {
+  const long n = static_cast<long>(manifolds.size());
+#pragma omp parallel for schedule(static) if (n >= kParallelMinimum)
+  for (long k = 0; k < n; ++k) {
+    const ContactManifold& m = manifolds[k];
+    if (st.deep[k]) continue;
+    const Vec3& va = st.velocity[m.block_a];
+    const Vec3& vb = st.velocity[m.block_b];
+    for (int q = 0; q < m.point_count; ++q) {
+      const ContactPoint& p = m.points[q];
+      const double vn = m.normal.dot(velocity_at(vb, p.rb) - velocity_at(va, p.ra));
+      if (current_gap(m, p, st.step_moves) + h * std::min(vn, 0.0) < -m.deep_overlap) st.deep[k] = 1;
+    }
+  }
+}
+
 void converge_deep(std::vector<ContactManifold>& manifolds, const SweepSettings& relax, int iterations,
                    SweepState& st) {
   std::vector<char> involved;
