@@ -113,17 +113,16 @@ struct SimulationOptions {
   double contact_damping_ratio = 10.0;
 
   // control.split_impulses: how the substep solver pushes overlapping blocks apart
-  // (docs/theory.md §13, "Split impulses"). false, the default and what every published
-  // number was made with: Box2D v3's soft step, a sweep whose velocities carry the push-out
-  // and a relax sweep that takes it out of them again. true: two sweeps of the velocities
-  // without push-out, then a sweep of push-out velocities that move the blocks and are then
-  // dropped (Catto 2006, Bullet's split impulse), so that no push-out is ever left as kinetic
-  // energy. A relax sweep that has not converged leaves part of the push-out in the blocks: a
-  // column of ten blocks at rest then creates energy (1 m blocks at 5 ms x 4; 8 m blocks at
+  // (docs/theory.md §13, "Split impulses"). true, the default since model revision
+  // 2026-11-27.4: two sweeps of the velocities without push-out, then a sweep of push-out
+  // velocities that move the blocks and are then dropped (Catto 2006, Bullet's split impulse),
+  // so that no push-out is ever left as kinetic energy. false: Box2D v3's soft step (revision
+  // .27.3 and before), a sweep whose velocities carry the push-out and a relax sweep that
+  // takes it out again; an unconverged relax sweep leaves part of the push-out in the blocks:
+  // a column of ten blocks at rest then creates energy (1 m blocks at 5 ms x 4; 8 m blocks at
   // 10 ms x 3) and Vajont section VII's resting mass rattles at 10 ms x 3 (0.41 m/s); with
-  // split impulses both rest (tests/test_resting_column.cpp). Not yet the default: the
-  // Vajont tables have not been re-run with it (docs/vajont.md).
-  bool split_impulses = false;
+  // split impulses both rest (tests/test_resting_column.cpp).
+  bool split_impulses = true;
 
   // Substep solver: every block rigid (its three strain unknowns dropped; an elastic
   // material can ask for rigid blocks with materials.NAME.rigid). On by default: the
