@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <initializer_list>
 #include <string>
 #include <utility>
@@ -43,21 +44,14 @@ struct Impact {
 
 std::string label(const Impact& c) {
   const char* target = c.target == Target::Floor ? "the floor" : c.target == Target::SameSize ? "a block as large" : "a quarter-size block";
-  return std::to_string(c.size) + " m block at " + std::to_string(c.speed) + " m/s onto " + target + ", " +
-         std::to_string(c.step * 1000) + " ms x " + std::to_string(c.substeps) + (c.corner_first ? ", corner first" : "");
+  char text[160];
+  std::snprintf(text, sizeof text, "%g m block at %g m/s onto %s, %g ms x %d%s", c.size, c.speed, target, c.step * 1000,
+                c.substeps, c.corner_first ? ", corner first" : "");
+  return text;
 }
 
 Scene impact_scene(const Impact& c) {
-  Scene s;
-  s.duration = 0.5;
-  s.max_step = c.step;
-  s.output_interval = 0.05;
-  s.materials.push_back({"rock", 2500.0, 5.0e9, 0.25});
-  Interface joint;
-  joint.name = "joint";
-  joint.friction_angle = 30.0;
-  s.interfaces.push_back(joint);
-  s.default_interface = 0;
+  Scene s = verification::rock_scene(2500.0, 30.0, 0.5, c.step, 0.05);
   s.options.integrator = Integrator::Substep;
   s.options.substeps = c.substeps;
   const double w = c.size;
@@ -86,6 +80,8 @@ constexpr double kMaxImpactOverlap = 0.005;
 // Runs every impact of the sweep onto `targets`; returns how many ran.
 int run_impacts(std::initializer_list<Target> targets, double max_overlap) {
   int runs = 0;
+  double worst = 0.0;
+  std::string worst_case;
   for (const double size : {1.0, 4.0, 8.0})
     for (const double speed : {5.0, 10.0, 20.0})
       for (const auto& [step, substeps] : {std::pair{0.01, 3}, std::pair{0.005, 4}})
@@ -97,8 +93,11 @@ int run_impacts(std::initializer_list<Target> targets, double max_overlap) {
             EXPECT_LE(r.summary.solver.worst_penetration_ratio, max_overlap)
                 << label(c) << ": " << r.summary.solver.worst_penetration << " m between "
                 << r.summary.solver.worst_penetration_at;
+            if (r.summary.solver.worst_penetration_ratio > worst)
+              worst = r.summary.solver.worst_penetration_ratio, worst_case = label(c);
             ++runs;
           }
+  std::printf("[measured] worst overlap %.4g of the smaller block (%s)\n", worst, worst_case.c_str());
   return runs;
 }
 

@@ -31,16 +31,7 @@ struct StepSetting {
 // wall are laid in running bond and closed by half blocks, so that nothing overhangs. Rock
 // of 2700 kg/m^3, joints of 35 deg. Measure points at the top course and every quarter.
 Scene column_scene(int courses, int per_course, double w, StepSetting setting, bool split) {
-  Scene s;
-  s.duration = 5.0;
-  s.max_step = setting.step;
-  s.output_interval = 0.05;
-  s.materials.push_back({"rock", 2700.0, 5.0e9, 0.25});
-  Interface joint;
-  joint.name = "joint";
-  joint.friction_angle = 35.0;
-  s.interfaces.push_back(joint);
-  s.default_interface = 0;
+  Scene s = verification::rock_scene(2700.0, 35.0, 5.0, setting.step, 0.05);
   s.options.integrator = Integrator::Substep;
   s.options.substeps = setting.substeps;
   s.options.split_impulses = split;

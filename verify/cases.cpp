@@ -116,6 +116,20 @@ Scene brick_wall_scene(int courses, int per_course, double duration) {
   return s;
 }
 
+Scene rock_scene(double density, double friction_angle, double duration, double step, double output_interval) {
+  Scene s;
+  s.duration = duration;
+  s.max_step = step;
+  s.output_interval = output_interval;
+  s.materials.push_back({"rock", density, 5.0e9, 0.25});
+  Interface joint;
+  joint.name = "joint";
+  joint.friction_angle = friction_angle;
+  s.interfaces.push_back(joint);
+  s.default_interface = 0;
+  return s;
+}
+
 BlockInput block(const std::string& name, std::vector<Vec2> polygon, bool fixed) {
   BlockInput b;
   b.name = name;

@@ -34,6 +34,10 @@ Scene collision_scene();
 // the benchmark's many-contact scene (100 blocks for 10 x 10).
 Scene brick_wall_scene(int courses, int per_course, double duration);
 
+// A scene with no blocks yet: one rock (E 5 GPa, nu 0.25) of `density` (kg/m^3) and one
+// joint interface of `friction_angle` (deg), the default for every pair; gravity as Scene's.
+Scene rock_scene(double density, double friction_angle, double duration, double step, double output_interval);
+
 // A block of material 0 in its own group, named `name`.
 BlockInput block(const std::string& name, std::vector<Vec2> polygon, bool fixed);
 
