@@ -43,7 +43,7 @@ void integrate_positions(SweepState& st, double h, const std::vector<Vec3>& star
   for (long b = 0; b < n; ++b) {
     const BlockMass& m = st.masses[b];
     if (!m.moves) continue;
-    if (smooth_acceleration <= 0.0) {
+    if (smooth_acceleration < 0.0) {
       moves[b] = 0.5 * h * (start_velocity[b] + st.velocity[b]);
     } else {
       Vec3 change = st.velocity[b] - start_velocity[b];
