@@ -76,12 +76,10 @@ void measure_contacts(SubstepContext& w, double time, double converged_speed) {
   const BlockSystem& s = w.system;
   SolverReport& report = w.report;
   for (const ContactManifold& m : w.contacts.manifolds) {
-    const Vec3& va = w.state.velocity[m.block_a];
-    const Vec3& vb = w.state.velocity[m.block_b];
     for (int q = 0; q < m.point_count; ++q) {
       const ContactPoint& p = m.points[q];
       const double gap = current_gap(m, p, w.state.step_moves);
-      const double vn = m.normal.dot(velocity_at(vb, p.rb) - velocity_at(va, p.ra));
+      const double vn = normal_rate(m, p, w.state.velocity);
       if (gap < 0.0 && vn < -converged_speed) ++report.unconverged_points;
       w.worst.note(s, m, -gap, time);
     }

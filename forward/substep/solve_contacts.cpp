@@ -110,7 +110,7 @@ double manifold_pass(ContactManifold& m, char& deep, const SweepSettings& settin
       mass_scale = settings.softness.mass_scale;
     }
     if (!settings.use_bias && gap < -m.deep_overlap) deep = 1;
-    const double vn = m.normal.dot(velocity_at(vb, p.rb) - velocity_at(va, p.ra));
+    const double vn = normal_rate(m, p, st.velocity);
     const double change = -p.impulse.normal_mass * mass_scale * (vn + bias);
     // Contact law: compression only, unless a bond holds tension (tension cut-off).
     const double total = std::max(p.impulse.normal + change, -p.impulse.tension);
@@ -199,7 +199,7 @@ void push_out_overlaps(std::vector<ContactManifold>& manifolds, const std::vecto
         const double excess = std::min(0.0, current_gap(m, p, st.step_moves) + settings.linear_slop);
         const double target = std::min(-settings.softness.bias_rate * excess, settings.max_pushout_speed);
         if (target <= 0.0 && p.impulse.push_out == 0.0) continue;
-        const double un = m.normal.dot(velocity_at(ub, p.rb) - velocity_at(ua, p.ra));
+        const double un = normal_rate(m, p, st.push_velocity);
         const double total = std::max(p.impulse.push_out + p.impulse.normal_mass * (target - un), 0.0);
         const double change = total - p.impulse.push_out;
         apply(ua, ub, ma, mb, p, change * m.normal);
@@ -218,11 +218,9 @@ void flag_closing_deep(const std::vector<ContactManifold>& manifolds, double h, 
   for (long k = 0; k < n; ++k) {
     const ContactManifold& m = manifolds[k];
     if (st.deep[k]) continue;
-    const Vec3& va = st.velocity[m.block_a];
-    const Vec3& vb = st.velocity[m.block_b];
     for (int q = 0; q < m.point_count; ++q) {
       const ContactPoint& p = m.points[q];
-      const double vn = m.normal.dot(velocity_at(vb, p.rb) - velocity_at(va, p.ra));
+      const double vn = normal_rate(m, p, st.velocity);
       if (current_gap(m, p, st.step_moves) + h * std::min(vn, 0.0) < -m.deep_overlap) st.deep[k] = 1;
     }
   }

@@ -98,10 +98,16 @@ void correct_positions(const std::vector<ContactManifold>& manifolds, const Posi
 // that follows; a bond is lost once its point slides or opens (contact_law.hpp).
 void advance_slip(const BlockSystem& system, const std::vector<Vec3>& moves, double h, ContactSet& contacts);
 
+// Block b's rate (or move) relative to block a's at the point, along the normal: > 0 opening.
+// `rates` per block: velocities (vx, vy, w) or moves (dx, dy, dtheta).
+inline double normal_rate(const ContactManifold& m, const ContactPoint& p, const std::vector<Vec3>& rates) {
+  return m.normal.dot(velocity_at(rates[m.block_b], p.rb) - velocity_at(rates[m.block_a], p.ra));
+}
+
 // The gap of a point now: its gap at the start of the step plus the relative move of the
 // two blocks at the point along the normal.
 inline double current_gap(const ContactManifold& m, const ContactPoint& p, const std::vector<Vec3>& step_moves) {
-  return p.separation + m.normal.dot(velocity_at(step_moves[m.block_b], p.rb) - velocity_at(step_moves[m.block_a], p.ra));
+  return p.separation + normal_rate(m, p, step_moves);
 }
 
 }  // namespace ddafit
