@@ -262,7 +262,13 @@ void correct_positions(const std::vector<ContactManifold>& manifolds, const Posi
     for (int i = of_block->first[b]; i < of_block->first[b + 1]; ++i)
       if (!listed[of_block->ids[i]]) listed[of_block->ids[i]] = 1, list.push_back(of_block->ids[i]);
   };
-  for (int pass = 0; pass < settings.passes; ++pass) {
+  // Up to `passes` passes, and up to twice as many while the last pass still corrected: on
+  // Vajont section X degraded the eighth pass closed an open pair 5.6 cm (1.13 % of its
+  // smaller block) while pushing its blocks out of deep neighbours, and nothing followed it;
+  // with the extra passes 0.54 % (section VII degraded 0.76 -> 0.59 %, at the same cost).
+  bool corrected = true;
+  for (int pass = 0; pass < settings.passes || (corrected && pass < 2 * settings.passes); ++pass) {
+    corrected = false;
     for (size_t i = 0; i < list.size(); ++i) {
       const ContactManifold& m = manifolds[list[i]];
       BlockMass ma = st.masses[m.block_a], mb = st.masses[m.block_b];
@@ -291,7 +297,7 @@ void correct_positions(const std::vector<ContactManifold>& manifolds, const Posi
         const double k_n = ma.inverse_mass + mb.inverse_mass + ma.inverse_inertia * ca * ca + mb.inverse_inertia * cb * cb;
         if (k_n > 0.0) apply(da, db, ma, mb, p, (correction / k_n) * m.normal), moved = true;
       }
-      if (moved) bring_in(m.block_a), bring_in(m.block_b);
+      if (moved) corrected = true, bring_in(m.block_a), bring_in(m.block_b);
     }
   }
 }
