@@ -210,14 +210,6 @@ std::string bounding_friction_sentence(const Study& study, const BoundingFrictio
   if (!f.available) return "No bounding friction: " + f.why_not + ".";
   const auto degrees = [](double mu) { return std::atan(mu) * 180.0 / M_PI; };
   const std::string best = fmt::format("the best fit is mu_b = {:.3f} (phi_b = {:.1f} deg)", f.mu_best, degrees(f.mu_best));
-  // mu_b = tan(phi_p - i) falls as the profiled degradation or roughness rises, so the
-  // lowest friction sits at the range's upper end of the parameter.
-  if (f.delta4.high_at_bound)
-    return fmt::format("Basal friction as low as mu_b = {:.3f} (phi_b = {:.1f} deg, {} at its upper search bound) is "
-                       "still compatible at Delta chi2 <= 4 (interface `{}`): no lower bound was found; widen "
-                       "the bound to find one. {}{}.",
-                       f.delta4.mu_low, degrees(f.delta4.mu_low), study.parameters[f.parameter].name, f.interface,
-                       static_cast<char>(std::toupper(best[0])), best.substr(1));
   // With a model spread: the bound with it, then the observations' sigma alone.
   const std::string alone =
       !f.with_model_sigma ? std::string()
@@ -225,6 +217,15 @@ std::string bounding_friction_sentence(const Study& study, const BoundingFrictio
           ? " (observations only: no lower bound within the search bounds)"
           : fmt::format(" (observations only: >= {:.3f}, phi_b = {:.1f} deg)", f.delta4_observations.mu_low,
                         degrees(f.delta4_observations.mu_low));
+  // mu_b = tan(phi_p - i) falls as the profiled degradation or roughness rises, so the
+  // lowest friction sits at the range's upper end of the parameter.
+  if (f.delta4.high_at_bound)
+    return fmt::format("Basal friction as low as mu_b = {:.3f} (phi_b = {:.1f} deg, {} at its upper search bound) is "
+                       "still compatible at Delta chi2 <= 4{}{} (interface `{}`): no lower bound was found; widen "
+                       "the bound to find one. {}{}.",
+                       f.delta4.mu_low, degrees(f.delta4.mu_low), study.parameters[f.parameter].name,
+                       f.with_model_sigma ? " with the model's spread" : "", alone, f.interface,
+                       static_cast<char>(std::toupper(best[0])), best.substr(1));
   return fmt::format("Basal friction cannot have dropped below mu_b = {:.3f} (phi_b = {:.1f} deg) at Delta chi2 <= 4{}{} "
                      "(interface `{}`); {}.",
                      f.delta4.mu_low, degrees(f.delta4.mu_low), f.with_model_sigma ? " with the model's spread" : "",

@@ -382,6 +382,14 @@ TEST(InverseModelSigma, AGivenModelSigmaWidensTheRangeBySigmaEffOverSigma) {
       << "with " << with_model << ", observations only " << alone;
   // The sentence gives both bounds.
   EXPECT_NE(bounding_friction_sentence(study, f).find("observations only"), std::string::npos);
+  // Also when the range with the spread reaches the search bound (section VII's coarse-to-fine
+  // study at revision 2026-11-27.6 printed only the reading with the spread there).
+  BoundingFriction at_bound = f;
+  at_bound.delta4.high_at_bound = true;
+  at_bound.delta4_observations.high_at_bound = false;
+  const std::string sentence = bounding_friction_sentence(study, at_bound);
+  EXPECT_NE(sentence.find("no lower bound was found"), std::string::npos) << sentence;
+  EXPECT_NE(sentence.find("(observations only: >= "), std::string::npos) << sentence;
 }
 
 TEST(InverseModelSigma, AnEnsembleModelSigmaIsMeasuredOnceAtTheStartAndCached) {
