@@ -211,6 +211,7 @@ std::string bounding_friction_sentence(const Study& study, const BoundingFrictio
   const auto degrees = [](double mu) { return std::atan(mu) * 180.0 / M_PI; };
   const std::string best = fmt::format("the best fit is mu_b = {:.3f} (phi_b = {:.1f} deg)", f.mu_best, degrees(f.mu_best));
   // With a model spread: the bound with it, then the observations' sigma alone.
+  const std::string spread = f.with_model_sigma ? " with the model's spread" : "";
   const std::string alone =
       !f.with_model_sigma ? std::string()
       : f.delta4_observations.high_at_bound
@@ -223,13 +224,12 @@ std::string bounding_friction_sentence(const Study& study, const BoundingFrictio
     return fmt::format("Basal friction as low as mu_b = {:.3f} (phi_b = {:.1f} deg, {} at its upper search bound) is "
                        "still compatible at Delta chi2 <= 4{}{} (interface `{}`): no lower bound was found; widen "
                        "the bound to find one. {}{}.",
-                       f.delta4.mu_low, degrees(f.delta4.mu_low), study.parameters[f.parameter].name,
-                       f.with_model_sigma ? " with the model's spread" : "", alone, f.interface,
+                       f.delta4.mu_low, degrees(f.delta4.mu_low), study.parameters[f.parameter].name, spread,
+                       alone, f.interface,
                        static_cast<char>(std::toupper(best[0])), best.substr(1));
   return fmt::format("Basal friction cannot have dropped below mu_b = {:.3f} (phi_b = {:.1f} deg) at Delta chi2 <= 4{}{} "
                      "(interface `{}`); {}.",
-                     f.delta4.mu_low, degrees(f.delta4.mu_low), f.with_model_sigma ? " with the model's spread" : "",
-                     alone, f.interface, best);
+                     f.delta4.mu_low, degrees(f.delta4.mu_low), spread, alone, f.interface, best);
 }
 
 std::vector<std::string> write_report(const std::string& dir, const Study& given, const InversionSummary& summary) {

@@ -51,7 +51,7 @@ TEST(PositionCorrection, ABlockPushedIntoANeighbourOutsideTheListIsCorrectedToo)
   constexpr double kDeep = 0.004;
   Row row = make_row({-0.104, 0.0, 0.0}, kDeep);
   row.state.deep[0] = 1;
-  correct_positions(row.manifolds, PositionCorrection{8, 0.8, 1.0}, row.state);
+  correct_positions(row.manifolds, PositionCorrection{8, 8, 0.8, 1.0}, row.state);
   for (size_t k = 0; k < row.manifolds.size(); ++k) {
     const ContactManifold& m = row.manifolds[k];
     const double gap = current_gap(m, m.points[0], row.state.step_moves);
@@ -67,7 +67,7 @@ TEST(PositionCorrection, ABlockPushedIntoANeighbourOutsideTheListIsCorrectedToo)
 
 TEST(PositionCorrection, NothingMovesWithoutADeepOverlap) {
   Row row = make_row({-0.003, 0.0, -0.001}, 0.004);
-  correct_positions(row.manifolds, PositionCorrection{8, 0.8, 1.0}, row.state);
+  correct_positions(row.manifolds, PositionCorrection{8, 8, 0.8, 1.0}, row.state);
   for (const Vec3& move : row.state.step_moves) EXPECT_EQ(move, Vec3::Zero());
 }
 

@@ -262,12 +262,10 @@ void correct_positions(const std::vector<ContactManifold>& manifolds, const Posi
     for (int i = of_block->first[b]; i < of_block->first[b + 1]; ++i)
       if (!listed[of_block->ids[i]]) listed[of_block->ids[i]] = 1, list.push_back(of_block->ids[i]);
   };
-  // Up to `passes` passes, and up to twice as many while the last pass still corrected: on
-  // Vajont section X degraded the eighth pass closed an open pair 5.6 cm (1.13 % of its
-  // smaller block) while pushing its blocks out of deep neighbours, and nothing followed it;
-  // with the extra passes 0.54 % (section VII degraded 0.76 -> 0.59 %, at the same cost).
+  // `passes` passes, then up to `extra_passes` more while the last one still corrected.
+  const int most = settings.passes + settings.extra_passes;
   bool corrected = true;
-  for (int pass = 0; pass < settings.passes || (corrected && pass < 2 * settings.passes); ++pass) {
+  for (int pass = 0; pass < settings.passes || (corrected && pass < most); ++pass) {
     corrected = false;
     for (size_t i = 0; i < list.size(); ++i) {
       const ContactManifold& m = manifolds[list[i]];

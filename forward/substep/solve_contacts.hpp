@@ -87,6 +87,7 @@ void converge_deep(std::vector<ContactManifold>& manifolds, const SweepSettings&
 // over those manifolds only (a few per step), in order, on one thread.
 struct PositionCorrection {
   int passes = 0;
+  int extra_passes = 0;  // more passes, taken only while the last pass still corrected something
   double fraction = 0.0;
   double max_correction = 0.0;  // m
 };
