@@ -9,6 +9,7 @@
 // contact is met.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <initializer_list>
@@ -117,6 +118,105 @@ TEST(ImpactDepth, AFastBlockStopsAtWhatItHits) {
 // 0.67 % (2 of 36 above 0.5 %, the bound of the impacts above; not reached here).
 TEST(ImpactDepth, ALightBlockSqueezedOntoTheFloorStaysOutOfIt) {
   EXPECT_EQ(run_impacts({Target::Quarter}, 2.0 * kMaxImpactOverlap), 36);
+}
+
+// A block sliding at `speed` along the floor into a row of `count` resting blocks that ends
+// against a fixed wall. The striker is a square of side `size`; the row's blocks are as tall
+// and `ratio` times as wide (mass ratio 1 / ratio). The first is squeezed between the
+// striker and the second, which the sweeps of the first's deep manifolds drive into the
+// third, whose manifold they do not list. A measure point at every block's centre.
+struct RowImpact {
+  double size, speed, ratio;
+  int count;
+  double step;
+  int substeps;
+};
+
+Scene row_scene(const RowImpact& c) {
+  Scene s = verification::rock_scene(2500.0, 30.0, 0.5, c.step, c.step);
+  s.options.integrator = Integrator::Substep;
+  s.options.substeps = c.substeps;
+  const double w = c.size, r = c.ratio * c.size;
+  s.blocks.push_back(box("floor", {0.0, -0.5 * w}, 8.0 * w + 2.0 * c.count * r, w, 0.0, true));
+  BlockInput striker = box("striker", {0.0, 0.5 * w}, w, w, 0.0, false);
+  striker.velocity = Vec2(c.speed, 0.0);
+  s.blocks.push_back(striker);
+  s.measure.push_back({"striker", {0.0, 0.5 * w}});
+  double x = 0.5 * w + 0.5;  // the striker's face at 0.5 w, the row 0.5 m beyond it
+  for (int i = 0; i < c.count; ++i, x += r) {
+    s.blocks.push_back(box("row_" + std::to_string(i), {x + 0.5 * r, 0.5 * w}, r, w, 0.0, false));
+    s.measure.push_back({"row_" + std::to_string(i), {x + 0.5 * r, 0.5 * w}});
+  }
+  s.blocks.push_back(box("wall", {x + 0.5 * w, w}, w, 2.0 * w, 0.0, true));
+  return s;
+}
+
+struct RowResults {
+  int runs = 0;
+  double worst_overlap = 0.0;  // of the smaller block
+  double worst_rebound = 0.0;  // fastest backward speed of any block over the impact speed
+};
+
+// Runs the sweep over striker sizes (1, 4 m), speeds (5, 10, 20 m/s), row lengths (3, 6)
+// and both steps of the Vajont scene for each row width in `ratios`. The history is written
+// every step (an output interval shorter than the step would shorten the step).
+RowResults run_rows(std::initializer_list<double> ratios, bool check_reach) {
+  RowResults out;
+  for (const double size : {1.0, 4.0})
+    for (const double speed : {5.0, 10.0, 20.0})
+      for (const double ratio : ratios)
+        for (const int count : {3, 6})
+          for (const auto& [step, substeps] : {std::pair{0.01, 3}, std::pair{0.005, 4}}) {
+            const RowImpact c{size, speed, ratio, count, step, substeps};
+            const SimulationResult r = simulate(row_scene(c));
+            char text[160];
+            std::snprintf(text, sizeof text, "%g m block at %g m/s into %d blocks %g m wide, %g ms x %d", size, speed,
+                          count, ratio * size, step * 1000, substeps);
+            EXPECT_EQ(r.summary.status, RunStatus::Completed) << text << ": " << r.summary.message;
+            EXPECT_LE(r.summary.solver.worst_penetration_ratio, 2.0 * kMaxImpactOverlap)
+                << text << ": " << r.summary.solver.worst_penetration << " m between " << r.summary.solver.worst_penetration_at;
+            // The striker meets the row 0.5 m away and the row, held by the wall, stops it: it
+            // goes no further than 0.5 m and the allowed overlaps (1 % of each row block). (Its
+            // |u_x| is no measure: it comes back, see the disabled test below.)
+            double reach = 0.0;
+            for (const HistoryRow& h : r.history) {
+              if (h.point == 0) reach = std::max(reach, h.displacement.x());
+              out.worst_rebound = std::max(out.worst_rebound, -h.velocity.x() / speed);
+            }
+            if (check_reach) {
+              EXPECT_GE(reach, 0.49) << text;
+              EXPECT_LE(reach, 0.5 + 2.0 * kMaxImpactOverlap * count * ratio * size) << text;
+            }
+            out.worst_overlap = std::max(out.worst_overlap, r.summary.solver.worst_penetration_ratio);
+            ++out.runs;
+          }
+  std::printf("[measured] %d row impacts: worst overlap %.4g of the smaller block, fastest rebound %.3g of the impact speed\n",
+              out.runs, out.worst_overlap, out.worst_rebound);
+  return out;
+}
+
+// Since revision 2026-11-27.7 the extra sweeps bring in a block they drive deep (docs/
+// theory.md §13, "Extra sweeps for deep manifolds"); found on Vajont section X reference,
+// where a 1.8 m block was driven at 13 m/s into an unlisted neighbour, 1.02 % of its size.
+// A row of blocks as large as the striker: held to the 1 % Vajont is held to, the striker
+// stopped where the row stands. Measured 0.40 % worst.
+TEST(ImpactDepth, ABlockDrivenIntoARowAgainstAWallStaysOutOfItsNeighbours) {
+  EXPECT_EQ(run_rows({1.0}, true).runs, 24);
+}
+
+// KNOWN DEFECT (issue "Blocks slide across joints ...", closing note of 2026-11-27): the
+// contact is inelastic (DDA has no restitution), so nothing should come back faster than
+// the little the overlaps' push-out gives; 5 % of the impact speed is the bound. Measured at
+// revision .27.7: blocks come back at up to 19 % of the impact speed from a row of blocks as
+// large as the striker and up to 59 % from a row of quarter-width blocks (mass ratio 4);
+// at 5 ms x 3 one of the latter (1 m at 10 m/s into six) stopped with "contacts are creating
+// energy". Traced: the next substep's warm start re-applies the impact's impulses to blocks
+// that have stopped, and two sweeps do not unwind them along the row; with warm starting
+// off the rebound fell to 10 %. Not mended yet: warm starting is what lets resting masses
+// rest, and a mend needs its own model revision and the Vajont re-run.
+TEST(ImpactDepth, DISABLED_ABlockDrivenIntoARowDoesNotBounceBack) {
+  const RowResults rows = run_rows({1.0, 0.25}, false);
+  EXPECT_LE(rows.worst_rebound, 0.05);
 }
 
 }  // namespace

@@ -212,29 +212,74 @@ void push_out_overlaps(std::vector<ContactManifold>& manifolds, const std::vecto
   });
 }
 
+namespace {
+
+// A point of m whose gap after a move of h at its present closing speed would pass deep_overlap.
+bool closing_deep(const ContactManifold& m, double h, const SweepState& st) {
+  for (int q = 0; q < m.point_count; ++q) {
+    const ContactPoint& p = m.points[q];
+    const double vn = normal_rate(m, p, st.velocity);
+    if (current_gap(m, p, st.step_moves) + h * std::min(vn, 0.0) < -m.deep_overlap) return true;
+  }
+  return false;
+}
+
+// Far blocks: moving blocks outside `involved` that a listed manifold touches. A far block
+// that one of its unlisted manifolds would now carry deep joins the neighbourhood with all
+// its manifolds. Returns whether any joined.
+bool bring_in_driven(const std::vector<ContactManifold>& manifolds, const BlockManifolds& of_block, double h,
+                     const SweepState& st, std::vector<char>& involved, std::vector<char>& listed,
+                     std::vector<int>& list) {
+  bool grew = false;
+  const size_t n = list.size();
+  for (size_t i = 0; i < n; ++i) {
+    const ContactManifold& m = manifolds[list[i]];
+    for (const int b : {m.block_a, m.block_b}) {
+      if (involved[b] || !st.masses[b].moves) continue;
+      bool driven = false;
+      for (int j = of_block.first[b]; j < of_block.first[b + 1] && !driven; ++j)
+        driven = !listed[of_block.ids[j]] && closing_deep(manifolds[of_block.ids[j]], h, st);
+      if (!driven) continue;
+      involved[b] = 1, grew = true;
+      for (int j = of_block.first[b]; j < of_block.first[b + 1]; ++j)
+        if (!listed[of_block.ids[j]]) listed[of_block.ids[j]] = 1, list.push_back(of_block.ids[j]);
+    }
+  }
+  return grew;
+}
+
+// converge_deep's rounds of bringing in driven far blocks, at most.
+constexpr int kDrivenRounds = 4;
+
+}  // namespace
+
 void flag_closing_deep(const std::vector<ContactManifold>& manifolds, double h, SweepState& st) {
   const long n = static_cast<long>(manifolds.size());
 #pragma omp parallel for schedule(static) if (n >= kParallelMinimum)
-  for (long k = 0; k < n; ++k) {
-    const ContactManifold& m = manifolds[k];
-    if (st.deep[k]) continue;
-    for (int q = 0; q < m.point_count; ++q) {
-      const ContactPoint& p = m.points[q];
-      const double vn = normal_rate(m, p, st.velocity);
-      if (current_gap(m, p, st.step_moves) + h * std::min(vn, 0.0) < -m.deep_overlap) st.deep[k] = 1;
-    }
-  }
+  for (long k = 0; k < n; ++k)
+    if (!st.deep[k] && closing_deep(manifolds[k], h, st)) st.deep[k] = 1;
 }
 
 void converge_deep(std::vector<ContactManifold>& manifolds, const SweepSettings& relax, int iterations,
-                   SweepState& st) {
+                   SweepState& st, double closing_h) {
   std::vector<char> involved;
-  const std::vector<int> list = deep_neighbourhood(manifolds, st, involved);
+  std::vector<int> list = deep_neighbourhood(manifolds, st, involved);
   if (list.empty()) return;
   const double inv_h = 1.0 / relax.h;
   char ignored = 0;
-  for (int it = 0; it < iterations; ++it)
-    for (const int k : list) solve_manifold(manifolds[k], ignored, relax, inv_h, st);
+  const auto sweeps = [&] {
+    for (int it = 0; it < iterations; ++it)
+      for (const int k : list) solve_manifold(manifolds[k], ignored, relax, inv_h, st);
+  };
+  sweeps();
+  if (closing_h <= 0.0) return;
+  const BlockManifolds of_block(manifolds, st.velocity.size());
+  std::vector<char> listed(manifolds.size(), 0);
+  for (const int k : list) listed[k] = 1;
+  for (int round = 0; round < kDrivenRounds; ++round) {
+    if (!bring_in_driven(manifolds, of_block, closing_h, st, involved, listed, list)) break;
+    sweeps();
+  }
 }
 
 void correct_positions(const std::vector<ContactManifold>& manifolds, const PositionCorrection& settings,
