@@ -2,7 +2,7 @@
 # run_peer.sh: measure the public DDA peer ntdda (github doolin/ntdda) against ddafit's two
 # solvers (implicit, substep) on running-bond brick walls of 411 and 1621 blocks.
 #
-#   bash /tmp/peer/run_peer.sh     # everything; ~5-30 min, mostly ddafit implicit on 1621 blocks (see README.md)
+#   DDAFIT=build/apps/ddafit/ddafit bash bench/peer/run_peer.sh   # everything; ~3 min (see README.md)
 #
 # Run it on an IDLE machine: it times programs, one at a time, never two at once.
 # Knobs (environment variables, all optional):
@@ -15,7 +15,7 @@
 #   STAND_MM=10               the wall "stands" if measured point 1 moved less than this (mm)
 #   REQUIRE_IDLE=0            1 = refuse to start when the 1-min load average is above 0.5
 #   NTDDA_CTEST=0             1 = run ntdda's own ctest after building it (11 of 13 pass upstream)
-#   OUT=/tmp/peer/runs/DATE   where the run folders and results.md go
+#   OUT=bench/peer/runs/DATE  where the run folders and results.md go
 #   DDAFIT, NTDDA_GIT, WALL_PY, ANA: the ddafit binary, the ntdda git directory, the wall writer, the .ana
 set -euo pipefail
 
