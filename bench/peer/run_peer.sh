@@ -162,6 +162,19 @@ wall_seconds_of() { tail -n 1 "$1/time.txt" 2>/dev/null || echo "?"; }
 # ---------------------------------------------------------------------------------------------
 # 2. ntdda on one wall
 # ---------------------------------------------------------------------------------------------
+# One line on how a run ended: LABEL OUTCOME(exit code) FOLDER BLOCKS DONE-MESSAGE.
+report_outcome() {
+  local label=$1 outcome=$2 d=$3 blocks=$4 done_message=$5
+  if [[ $outcome == 0 ]]; then
+    say "$label: done, $done_message"
+  elif [[ $outcome == 124 ]]; then
+    say "$label: TIMEOUT after $(wall_timeout "$blocks") s (see $d/stderr.txt)"
+  else
+    say "$label: FAILED (exit $outcome); last lines of $d/stderr.txt:"
+    tail -n 5 "$d/stderr.txt" >&2 || true
+  fi
+}
+
 run_ntdda() {
   local blocks=$1 rep=$2
   local d=$OUT/w${blocks}_1ntdda_r${rep}
@@ -181,14 +194,10 @@ run_ntdda() {
   } > "$d/meta"
   local total
   total=$(sed -n 's/.*<li>Total: *\([0-9.]*\)<\/li>.*/\1/p' "$d/output/pushblock.html" 2>/dev/null | head -n 1 || true)
-  if [[ $rc == 0 ]] && grep -q 'pipeline_test: PASSED' "$d/stderr.txt"; then
-    say "ntdda, wall $blocks: done, ${total:-?} s of analysis (Total: of pushblock.html), $(wall_seconds_of "$d") s wall"
-  elif [[ $rc == 124 ]]; then
-    say "ntdda, wall $blocks: TIMEOUT after $(wall_timeout "$blocks") s (see $d/stderr.txt)"
-  else
-    say "ntdda, wall $blocks: FAILED (exit $rc); last lines of $d/stderr.txt:"
-    tail -n 5 "$d/stderr.txt" >&2 || true
-  fi
+  local outcome=$rc
+  [[ $rc == 0 ]] && ! grep -q 'pipeline_test: PASSED' "$d/stderr.txt" && outcome="0 without 'PASSED'"
+  report_outcome "ntdda, wall $blocks" "$outcome" "$d" "$blocks" \
+    "${total:-?} s of analysis (Total: of pushblock.html), $(wall_seconds_of "$d") s wall"
   return 0
 }
 
@@ -228,14 +237,7 @@ run_ddafit() {
     echo "threads=$threads"; echo "repeat=$rep"; echo "rc=$rc"; echo "folder=$d"
     echo "import_log=$imp/import.txt"; echo "measure_at=$at"
   } > "$d/meta"
-  if [[ $rc == 0 ]]; then
-    say "ddafit $solver --threads $threads, wall $blocks: done, $(wall_seconds_of "$d") s wall"
-  elif [[ $rc == 124 ]]; then
-    say "ddafit $solver --threads $threads, wall $blocks: TIMEOUT after $(wall_timeout "$blocks") s"
-  else
-    say "ddafit $solver --threads $threads, wall $blocks: FAILED (exit $rc); last lines of $d/stderr.txt:"
-    tail -n 5 "$d/stderr.txt" >&2 || true
-  fi
+  report_outcome "ddafit $solver --threads $threads, wall $blocks" "$rc" "$d" "$blocks" "$(wall_seconds_of "$d") s wall"
   return 0
 }
 
