@@ -241,15 +241,14 @@ std::string quiet_start(SubstepContext& w) {
     initial[b] = s.blocks[b].velocity;
     was_fixed[b] = s.blocks[b].fixed;
     if (!touching[b]) s.blocks[b].fixed = true;  // in flight: takes no part
-    else if (!s.blocks[b].fixed) s.blocks[b].velocity.setZero();
   }
   std::vector<double> before;
   for (int k = 0; k < kQuietStartSteps; ++k) {
     if (k > 0) detect(w);
     last_normal_impulses(w.contacts.manifolds, before);
-    advance(w, w.scene.max_step, false);
     for (Block& b : s.blocks)
       if (!b.fixed) b.velocity.setZero();
+    advance(w, w.scene.max_step, false);
     if (impulse_change(w.contacts.manifolds, before) <= kQuietStartTolerance) break;
   }
   for (size_t b = 0; b < s.blocks.size(); ++b) {
