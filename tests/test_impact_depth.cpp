@@ -6,7 +6,8 @@
 // §13, "Split impulses", step 5). Swept over block sizes, speeds, steps and what is hit (the
 // fixed floor, a resting block as large, a resting block a quarter as large), square-on and
 // corner first, because the depth an impact reaches depends on where within a substep the
-// contact is met.
+// contact is met; and on both solvers (the implicit solver's impacts are impulses too,
+// forward/step/resolve_impacts.hpp).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -41,19 +42,22 @@ struct Impact {
   int substeps;
   Target target;
   bool corner_first;  // turned 20 degrees: a corner meets the target first
+  Integrator integrator;
 };
+
+const char* solver_name(Integrator i) { return i == Integrator::Implicit ? "implicit" : "substep"; }
 
 std::string label(const Impact& c) {
   const char* target = c.target == Target::Floor ? "the floor" : c.target == Target::SameSize ? "a block as large" : "a quarter-size block";
   char text[160];
-  std::snprintf(text, sizeof text, "%g m block at %g m/s onto %s, %g ms x %d%s", c.size, c.speed, target, c.step * 1000,
-                c.substeps, c.corner_first ? ", corner first" : "");
+  std::snprintf(text, sizeof text, "%s: %g m block at %g m/s onto %s, %g ms x %d%s", solver_name(c.integrator), c.size,
+                c.speed, target, c.step * 1000, c.substeps, c.corner_first ? ", corner first" : "");
   return text;
 }
 
 Scene impact_scene(const Impact& c) {
   Scene s = verification::rock_scene(2500.0, 30.0, 0.5, c.step, 0.05);
-  s.options.integrator = Integrator::Substep;
+  s.options.integrator = c.integrator;
   s.options.substeps = c.substeps;
   const double w = c.size;
   s.blocks.push_back(box("floor", {0.0, -0.5 * w}, 8.0 * w, w, 0.0, true));
@@ -87,8 +91,9 @@ int run_impacts(std::initializer_list<Target> targets, double max_overlap) {
     for (const double speed : {5.0, 10.0, 20.0})
       for (const auto& [step, substeps] : {std::pair{0.01, 3}, std::pair{0.005, 4}})
         for (const Target target : targets)
-          for (const bool corner : {false, true}) {
-            const Impact c{size, speed, step, substeps, target, corner};
+          for (const bool corner : {false, true})
+            for (const Integrator integrator : {Integrator::Substep, Integrator::Implicit}) {
+            const Impact c{size, speed, step, substeps, target, corner, integrator};
             const SimulationResult r = simulate(impact_scene(c));
             EXPECT_EQ(r.summary.status, RunStatus::Completed) << label(c) << ": " << r.summary.message;
             EXPECT_LE(r.summary.solver.worst_penetration_ratio, max_overlap)
@@ -102,11 +107,11 @@ int run_impacts(std::initializer_list<Target> targets, double max_overlap) {
   return runs;
 }
 
-// Onto the fixed floor and onto a resting block as large: 72 impacts. With the trapezoidal
-// move of revision .27.3 (kSmoothAccelerationRatio 0) 7 of them overlapped by more than
-// 0.5 %, up to 1.01 % (a 1 m block at 10-20 m/s).
+// Onto the fixed floor and onto a resting block as large: 72 impacts per solver. With the
+// trapezoidal move of revision .27.3 (kSmoothAccelerationRatio 0) 7 substep runs overlapped
+// by more than 0.5 %, up to 1.01 % (a 1 m block at 10-20 m/s).
 TEST(ImpactDepth, AFastBlockStopsAtWhatItHits) {
-  EXPECT_EQ(run_impacts({Target::Floor, Target::SameSize}, kMaxImpactOverlap), 72);
+  EXPECT_EQ(run_impacts({Target::Floor, Target::SameSize}, kMaxImpactOverlap), 144);
 }
 
 // A light block squeezed between a heavy one arriving fast and the fixed floor (mass ratio
@@ -117,7 +122,7 @@ TEST(ImpactDepth, AFastBlockStopsAtWhatItHits) {
 // 0.25 m one, 10 ms x 3; 14 of 36 above 0.5 %). With up to sixteen while one still corrects,
 // 0.67 % (2 of 36 above 0.5 %, the bound of the impacts above; not reached here).
 TEST(ImpactDepth, ALightBlockSqueezedOntoTheFloorStaysOutOfIt) {
-  EXPECT_EQ(run_impacts({Target::Quarter}, 2.0 * kMaxImpactOverlap), 36);
+  EXPECT_EQ(run_impacts({Target::Quarter}, 2.0 * kMaxImpactOverlap), 72);
 }
 
 // A block sliding at `speed` along the floor into a row of `count` resting blocks that ends
@@ -131,11 +136,12 @@ struct RowImpact {
   double step;
   int substeps;
   double output;  // s, the history's interval (a shorter one than the step shortens the step)
+  Integrator integrator;
 };
 
 Scene row_scene(const RowImpact& c) {
   Scene s = verification::rock_scene(2500.0, 30.0, 0.5, c.step, c.output);
-  s.options.integrator = Integrator::Substep;
+  s.options.integrator = c.integrator;
   s.options.substeps = c.substeps;
   const double w = c.size, r = c.ratio * c.size;
   s.blocks.push_back(box("floor", {0.0, -0.5 * w}, 8.0 * w + 2.0 * c.count * r, w, 0.0, true));
@@ -155,12 +161,13 @@ Scene row_scene(const RowImpact& c) {
 struct RowResults {
   int runs = 0;
   double worst_overlap = 0.0;  // of the smaller block
-  double worst_rebound = 0.0;  // fastest backward speed of any block over the impact speed
+  double worst_rebound[2] = {0.0, 0.0};  // per solver (substep, implicit): fastest backward
+                                         // speed of any block over the impact speed
 };
 
 // Runs the sweep over striker sizes (1, 4 m), speeds (5, 10, 20 m/s), row lengths (3, 6)
 // and the time settings `steps` (by default the Vajont scene's two, the history written every
-// step) for each row width in `ratios`.
+// step) for each row width in `ratios`, on each of `solvers`.
 struct StepSetting {
   double step;
   int substeps;
@@ -169,18 +176,23 @@ struct StepSetting {
 using Steps = std::initializer_list<StepSetting>;
 constexpr Steps kVajontSteps = {{0.01, 3, 0.01}, {0.005, 4, 0.005}};
 
-RowResults run_rows(std::initializer_list<double> ratios, bool check_reach, Steps steps = kVajontSteps) {
+using Solvers = std::initializer_list<Integrator>;
+constexpr Solvers kBothSolvers = {Integrator::Substep, Integrator::Implicit};
+
+RowResults run_rows(std::initializer_list<double> ratios, bool check_reach, Steps steps = kVajontSteps,
+                    Solvers solvers = kBothSolvers) {
   RowResults out;
   for (const double size : {1.0, 4.0})
     for (const double speed : {5.0, 10.0, 20.0})
       for (const double ratio : ratios)
         for (const int count : {3, 6})
-          for (const auto& [step, substeps, output] : steps) {
-            const RowImpact c{size, speed, ratio, count, step, substeps, output};
+          for (const auto& [step, substeps, output] : steps)
+            for (const Integrator integrator : solvers) {
+            const RowImpact c{size, speed, ratio, count, step, substeps, output, integrator};
             const SimulationResult r = simulate(row_scene(c));
-            char text[160];
-            std::snprintf(text, sizeof text, "%g m block at %g m/s into %d blocks %g m wide, %g ms x %d, output every %g ms",
-                          size, speed, count, ratio * size, step * 1000, substeps, output * 1000);
+            char text[180];
+            std::snprintf(text, sizeof text, "%s: %g m block at %g m/s into %d blocks %g m wide, %g ms x %d, output every %g ms",
+                          solver_name(integrator), size, speed, count, ratio * size, step * 1000, substeps, output * 1000);
             EXPECT_EQ(r.summary.status, RunStatus::Completed) << text << ": " << r.summary.message;
             EXPECT_LE(r.summary.solver.worst_penetration_ratio, 2.0 * kMaxImpactOverlap)
                 << text << ": " << r.summary.solver.worst_penetration << " m between " << r.summary.solver.worst_penetration_at;
@@ -190,7 +202,8 @@ RowResults run_rows(std::initializer_list<double> ratios, bool check_reach, Step
             double reach = 0.0;
             for (const HistoryRow& h : r.history) {
               if (h.point == 0) reach = std::max(reach, h.displacement.x());
-              out.worst_rebound = std::max(out.worst_rebound, -h.velocity.x() / speed);
+              double& rebound = out.worst_rebound[integrator == Integrator::Implicit];
+              rebound = std::max(rebound, -h.velocity.x() / speed);
             }
             if (check_reach) {
               EXPECT_GE(reach, 0.49) << text;
@@ -199,8 +212,11 @@ RowResults run_rows(std::initializer_list<double> ratios, bool check_reach, Step
             out.worst_overlap = std::max(out.worst_overlap, r.summary.solver.worst_penetration_ratio);
             ++out.runs;
           }
-  std::printf("[measured] %d row impacts: worst overlap %.4g of the smaller block, fastest rebound %.3g of the impact speed\n",
-              out.runs, out.worst_overlap, out.worst_rebound);
+  std::printf("[measured] %d row impacts: worst overlap %.4g of the smaller block, fastest rebound (of the impact "
+              "speed)", out.runs, out.worst_overlap);
+  for (const Integrator i : solvers)
+    std::printf(" %s %.3g", solver_name(i), out.worst_rebound[i == Integrator::Implicit]);
+  std::printf("\n");
   return out;
 }
 
@@ -210,27 +226,47 @@ RowResults run_rows(std::initializer_list<double> ratios, bool check_reach, Step
 // A row of blocks as large as the striker: held to the 1 % Vajont is held to, the striker
 // stopped where the row stands. Measured 0.40 % worst; revision .27.6 (converge_deep without
 // the far blocks) holds these 24 as well: the test guards the class of the event, which has
-// so far gone deep only on Vajont section X.
+// so far gone deep only on Vajont section X. The implicit solver (24 runs more) was added at
+// .27.8: 1.09 % before its impacts took in the row (below), 0.89 % after.
 TEST(ImpactDepth, ABlockDrivenIntoARowAgainstAWallStaysOutOfItsNeighbours) {
-  EXPECT_EQ(run_rows({1.0}, true).runs, 24);
+  EXPECT_EQ(run_rows({1.0}, true).runs, 48);
 }
 
-// KNOWN DEFECT (issue "Blocks slide across joints ...", closing note of 2026-11-27): the
-// contact is inelastic (DDA has no restitution), so nothing should come back faster than
-// the little the overlaps' push-out gives; 5 % of the impact speed is the bound. Measured at
-// revision .27.7: blocks come back at up to 22 % of the impact speed from a row of blocks as
-// large as the striker and up to 83 % from a row of quarter-width blocks (mass ratio 4), and
-// with the history every 5 ms (10 ms steps cut to 5 ms) a 1 m block at 10 m/s into six of
-// those stops with "contacts are creating energy" (exit 3 from the command line). Traced:
-// the next substep's warm start re-applies the impact's impulses to blocks that have
-// stopped, and two sweeps do not unwind them along the row. With the striker listed first
-// (another sweep order; 59 % worst): no warm start 0.1 %; the warm start capped at twice the
-// impulse of the substep before 44 %; converge_deep's sweeps where a sweep took back more
-// than half the warm start 59 %. Not mended: warm starting is what lets resting masses rest,
-// and a mend needs its own model revision and the Vajont re-run.
-TEST(ImpactDepth, DISABLED_ABlockDrivenIntoARowDoesNotBounceBack) {
-  const RowResults rows = run_rows({1.0, 0.25}, false, {{0.01, 3, 0.01}, {0.005, 4, 0.005}, {0.01, 3, 0.005}});
-  EXPECT_LE(rows.worst_rebound, 0.05);
+// The contact is inelastic (both solvers take impacts as perfectly inelastic impulses), so
+// nothing should come back faster than the little the overlaps' push-out gives: 5 % of the
+// impact speed for rigid contact; the implicit solver's blocks are elastic and get 10 %.
+// Rows as wide as the striker and a quarter as wide (mass ratio 4), and 10 ms steps cut to
+// 5 ms by a 5 ms history besides the Vajont steps: 72 runs per solver.
+constexpr Steps kRowSteps = {{0.01, 3, 0.01}, {0.005, 4, 0.005}, {0.01, 3, 0.005}};
+
+// The implicit solver threw blocks back at up to 45 % until revision 2026-11-27.8: its
+// impact impulses (forward/step/resolve_impacts.cpp) took only the points closing at the
+// step's start, so the row's resting contacts met the struck block at their penalty
+// springs, which hand the approach back (V1 = 2 D / dt - V0). Since .27.8 the points the
+// impulses set closing join them: 8.9 % worst. The rest is the blocks' own elasticity
+// (Shi's strain unknowns; the impulses move the blocks' rigid part only): with E 100 times
+// the 5 GPa here, 4.1 %. Hence twice the rigid bound, for the spring-back of elastic blocks.
+TEST(ImpactDepth, TheImplicitSolversRowDoesNotThrowTheStrikerBack) {
+  const RowResults rows = run_rows({1.0, 0.25}, false, kRowSteps, {Integrator::Implicit});
+  EXPECT_EQ(rows.runs, 72);
+  EXPECT_LE(rows.worst_rebound[1], 0.10);
+}
+
+// KNOWN DEFECT (issue "Blocks slide across joints ...", closing notes of 2026-11-27): the
+// substep solver throws blocks back at up to 22 % of the impact speed from rows as large as
+// the striker and 83 % from quarter-width rows, and with the history every 5 ms a 1 m block
+// at 10 m/s into six of those stops with "contacts are creating energy" (exit 3 from the
+// command line). Traced: the next substep's warm start re-applies the impact's impulses to
+// blocks that have stopped, and two Gauss-Seidel sweeps cannot unwind them along the row to
+// the wall. Measured mends, none kept: the warm start allowed to grow by at most 4 |g| h of
+// a point's effective mass per substep: 2.0 % here, but Vajont's overlaps rose (section IV
+// degraded 0.55 -> 1.15 %, past the 1 % bound; III 0.43 / 0.41 -> 0.75 / 0.64 %); at 8 |g| h
+// 4.5 % and IV 0.94 %; at 4 |g| h with the extra sweeps on every capped manifold 0.96 % and
+// IV 0.76 %, but 34 % more wall (76 -> 102 s). Before: no warm start 0.1 % (resting masses
+// sink); capped at twice the substep before's impulse 44 %; extra sweeps 54-92 %.
+TEST(ImpactDepth, DISABLED_TheSubstepSolversRowDoesNotThrowTheStrikerBack) {
+  const RowResults rows = run_rows({1.0, 0.25}, false, kRowSteps, {Integrator::Substep});
+  EXPECT_LE(rows.worst_rebound[0], 0.05);
 }
 
 }  // namespace
