@@ -111,6 +111,7 @@ SweepSettings prepare_step(SubstepContext& w, double h) {
   water_accelerations(s, w.scene.gravity.norm(), h * w.options.substeps, w.state);
   prepare_contacts(w, h, kDeepOverlap);
   w.state.deep.assign(w.contacts.manifolds.size(), 0);
+  w.state.of_block.reset();
   w.colours = colour_manifolds(s, w.contacts.manifolds);
   if (w.sleep.enabled()) drop_sleeping_manifolds(w.contacts.manifolds, w.state.masses, w.colours);
   // The contact spring at an eighth of the substep rate, Box2D's ratio (30 Hz at 240 Hz),

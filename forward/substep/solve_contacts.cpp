@@ -161,20 +161,21 @@ std::vector<int> deep_neighbourhood(const std::vector<ContactManifold>& manifold
   return list;
 }
 
-// Each block's manifolds (compressed rows: manifolds of block b are ids[first[b] .. first[b + 1])).
-struct BlockManifolds {
-  std::vector<int> first, ids;
-  BlockManifolds(const std::vector<ContactManifold>& manifolds, size_t blocks) : first(blocks + 1, 0) {
-    for (const ContactManifold& m : manifolds) ++first[m.block_a + 1], ++first[m.block_b + 1];
-    for (size_t b = 0; b < blocks; ++b) first[b + 1] += first[b];
-    ids.resize(first[blocks]);
-    std::vector<int> next(first.begin(), first.end() - 1);
-    for (int k = 0; k < static_cast<int>(manifolds.size()); ++k)
-      ids[next[manifolds[k].block_a]++] = k, ids[next[manifolds[k].block_b]++] = k;
-  }
-};
-
 }  // namespace
+
+BlockManifolds::BlockManifolds(const std::vector<ContactManifold>& manifolds, size_t blocks) : first(blocks + 1, 0) {
+  for (const ContactManifold& m : manifolds) ++first[m.block_a + 1], ++first[m.block_b + 1];
+  for (size_t b = 0; b < blocks; ++b) first[b + 1] += first[b];
+  ids.resize(first[blocks]);
+  std::vector<int> next(first.begin(), first.end() - 1);
+  for (int k = 0; k < static_cast<int>(manifolds.size()); ++k)
+    ids[next[manifolds[k].block_a]++] = k, ids[next[manifolds[k].block_b]++] = k;
+}
+
+const BlockManifolds& block_manifolds(const std::vector<ContactManifold>& manifolds, SweepState& st) {
+  if (!st.of_block) st.of_block.emplace(manifolds, st.velocity.size());
+  return *st.of_block;
+}
 
 void solve_contacts(std::vector<ContactManifold>& manifolds, const std::vector<std::vector<int>>& colours,
                     const SweepSettings& settings, SweepState& st) {
@@ -273,7 +274,7 @@ void converge_deep(std::vector<ContactManifold>& manifolds, const SweepSettings&
   };
   sweeps();
   if (closing_h <= 0.0) return;
-  const BlockManifolds of_block(manifolds, st.velocity.size());
+  const BlockManifolds& of_block = block_manifolds(manifolds, st);
   std::vector<char> listed(manifolds.size(), 0);
   for (const int k : list) listed[k] = 1;
   for (int round = 0; round < kDrivenRounds; ++round) {
@@ -293,13 +294,14 @@ void correct_positions(const std::vector<ContactManifold>& manifolds, const Posi
   // into a neighbour of its own: that block's manifolds join the list as it moves. Without
   // this, on Vajont section III degraded a correction of slide_00446 against one heavy block
   // pressed it 5 cm (0.9 % of its size) into another that the list did not hold.
-  // The block-to-manifold index is built only when a block outside the list first moves.
-  std::optional<BlockManifolds> of_block;
+  // The block-to-manifold index (kept for the step) is looked up only when a block outside
+  // the list first moves.
+  const BlockManifolds* of_block = nullptr;
   std::vector<char> listed;
   const auto bring_in = [&](int b) {
     if (involved[b] || !st.masses[b].moves) return;
     if (!of_block) {
-      of_block.emplace(manifolds, st.velocity.size());
+      of_block = &block_manifolds(manifolds, st);
       listed.assign(manifolds.size(), 0);
       for (const int k : list) listed[k] = 1;
     }

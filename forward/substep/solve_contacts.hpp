@@ -4,6 +4,7 @@
 // have moved, one relax sweep without it so that no push-out velocity is kept.
 #pragma once
 
+#include <optional>
 #include <vector>
 
 #include "forward/block_system.hpp"
@@ -31,6 +32,12 @@ struct SweepSettings {
   int manifold_passes = 1;         // most passes over a manifold's points per sweep (control.contact_passes)
 };
 
+// Each block's manifolds (compressed rows: manifolds of block b are ids[first[b] .. first[b + 1])).
+struct BlockManifolds {
+  std::vector<int> first, ids;
+  BlockManifolds(const std::vector<ContactManifold>& manifolds, size_t blocks);
+};
+
 // The blocks' rigid-body velocities (vx, vy, w) that the sweeps change, and their moves
 // (dx, dy, dtheta) since the start of the step, from which each point's current gap
 // follows without new geometry.
@@ -41,7 +48,13 @@ struct SweepState {
   std::vector<Vec3> load_acceleration;  // per block, from loads other than gravity (water); empty if none
   std::vector<Vec3> push_velocity;  // per block: this substep's push-out (control.split_impulses)
   std::vector<char> deep;  // per manifold: a point overlapped beyond its deep_overlap in a relax sweep of the step
+  // Built when first needed in a step and kept for its substeps and its position correction
+  // (the manifolds do not change within a step); reset with `deep` at the step's start.
+  std::optional<BlockManifolds> of_block;
 };
+
+// st.of_block, built from `manifolds` if this step has not built it yet.
+const BlockManifolds& block_manifolds(const std::vector<ContactManifold>& manifolds, SweepState& st);
 
 void warm_start(const std::vector<ContactManifold>& manifolds, const std::vector<std::vector<int>>& colours,
                 SweepState& state);
