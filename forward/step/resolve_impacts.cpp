@@ -147,8 +147,8 @@ int resolve_impacts(ImplicitStepContext& ctx, double dt) {
       if (approach <= impact_speed) {
         for (int k = 0; k < kSettleSweeps; ++k) sweep(group);
       } else {
-        for (int k = 0; k < kMaxSweeps && sweep(group) > kSpeedTolerance * approach; ++k) {
-        }
+        for (int k = 0; k < kMaxSweeps; ++k)
+          if (sweep(group) <= kSpeedTolerance * approach) break;
       }
     }
   }
