@@ -22,7 +22,7 @@ namespace {
 // eight sweeps over the points closing at the step's start: a block driven into a row of
 // resting blocks met the row's contacts at their springs and came back at up to 45 % of its
 // speed (tests/test_impact_depth.cpp). Converging every group as an impact made the 411-
-// block wall of bench/peer run 1.8 times as long (its ~1900 points need all 200 sweeps).
+// block wall of bench/peer run 1.8 times as long (its ~1900 settling points seldom converge).
 constexpr int kSettleSweeps = 8;
 constexpr int kMaxSweeps = 200;
 constexpr int kMaxRounds = 16;
