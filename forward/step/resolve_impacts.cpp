@@ -2,9 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <type_traits>
 #include <map>
 #include <vector>
 
+#include "forward/block_groups.hpp"
 #include "forward/contact/contact_law.hpp"
 
 namespace ddafit {
@@ -63,8 +65,8 @@ int resolve_impacts(ImplicitStepContext& ctx, double dt) {
                                 inverse_inertia(m.block_b), p.ra, p.rb, axis);
   };
   std::vector<Impact> impacts;
-  std::vector<std::vector<char>> listed(manifolds.size());
-  for (int k = 0; k < static_cast<int>(manifolds.size()); ++k) listed[k].assign(manifolds[k].point_count, 0);
+  constexpr int kPoints = static_cast<int>(std::extent_v<decltype(ContactManifold::points)>);
+  std::vector<char> listed(manifolds.size() * kPoints, 0);  // per manifold point: an impact already
   // Lists every point not yet listed that closes faster than `beyond` past its target;
   // returns how many.
   const auto list_closing = [&](double beyond) {
@@ -72,14 +74,14 @@ int resolve_impacts(ImplicitStepContext& ctx, double dt) {
     for (int k = 0; k < static_cast<int>(manifolds.size()); ++k) {
       const ContactManifold& m = manifolds[k];
       for (int q = 0; q < m.point_count; ++q) {
-        if (listed[k][q]) continue;
+        if (listed[k * kPoints + q]) continue;
         const ContactPoint& p = m.points[q];
         const double target = -std::max(p.separation, 0.0) / dt;
         if (m.normal.dot(relative(m, p)) >= target - beyond) continue;
         const double normal_mass = effective_mass(m, p, m.normal);
         if (normal_mass <= 0.0) continue;
         impacts.push_back({k, q, target, normal_mass, effective_mass(m, p, m.tangent)});
-        listed[k][q] = 1;
+        listed[k * kPoints + q] = 1;
         ++added;
       }
     }
@@ -121,20 +123,15 @@ int resolve_impacts(ImplicitStepContext& ctx, double dt) {
     if (list_closing(round == 0 ? 0.0 : impact_speed) == 0) break;
     // Each group of blocks the impacts join (fixed blocks join none) converges on its own, so
     // that a collision far away never changes how far the sweeps go here.
-    std::vector<int> root(s.blocks.size());
-    for (int b = 0; b < static_cast<int>(root.size()); ++b) root[b] = b;
-    const auto find = [&](int b) {
-      while (root[b] != b) b = root[b] = root[root[b]];
-      return b;
-    };
+    BlockGroups joined(s.blocks.size());
     for (const Impact& i : impacts) {
       const ContactManifold& m = manifolds[i.manifold];
-      if (!s.blocks[m.block_a].fixed && !s.blocks[m.block_b].fixed) root[find(m.block_a)] = find(m.block_b);
+      if (!s.blocks[m.block_a].fixed && !s.blocks[m.block_b].fixed) joined.join(m.block_a, m.block_b);
     }
     std::map<int, std::vector<int>> groups;
     for (int n = 0; n < static_cast<int>(impacts.size()); ++n) {
       const ContactManifold& m = manifolds[impacts[n].manifold];
-      groups[find(s.blocks[m.block_a].fixed ? m.block_b : m.block_a)].push_back(n);
+      groups[joined.find(s.blocks[m.block_a].fixed ? m.block_b : m.block_a)].push_back(n);
     }
     for (const auto& [key, group] : groups) {
       if (group.back() < first_new) continue;  // converged in an earlier round, nothing new

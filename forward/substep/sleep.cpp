@@ -1,25 +1,16 @@
 #include "forward/substep/sleep.hpp"
 
 #include <cmath>
-#include <numeric>
+
+#include "forward/block_groups.hpp"
 
 namespace ddafit {
 namespace {
 
-struct Groups {
-  std::vector<int> parent;
-  explicit Groups(size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0); }
-  int find(int b) {
-    while (parent[b] != b) b = parent[b] = parent[parent[b]];
-    return b;
-  }
-  void join(int a, int b) { parent[find(a)] = find(b); }
-};
-
 // Free blocks joined by a manifold with a point touching (within the slop) or carrying load:
 // a resting group. Fixed blocks join nothing (every block on the bedrock would be one group).
-Groups touching_groups(const BlockSystem& s, const ContactSet& contacts, bool any_point) {
-  Groups g(s.blocks.size());
+BlockGroups touching_groups(const BlockSystem& s, const ContactSet& contacts, bool any_point) {
+  BlockGroups g(s.blocks.size());
   for (const ContactManifold& m : contacts.manifolds) {
     if (s.blocks[m.block_a].fixed || s.blocks[m.block_b].fixed) continue;
     bool joined = any_point && m.point_count > 0;
@@ -39,7 +30,7 @@ void wake_touched_groups(const BlockSystem& s, const ContactSet& contacts, const
   for (const char a : sleep.asleep) any_asleep = any_asleep || a;
   if (!any_asleep) return;
   std::vector<char> wake_root(s.blocks.size(), 0);
-  Groups g = touching_groups(s, contacts, true);
+  BlockGroups g = touching_groups(s, contacts, true);
   bool any = false;
   for (const ContactManifold& m : contacts.manifolds) {
     const int a = m.block_a, b = m.block_b;
@@ -85,7 +76,7 @@ void update_sleep(BlockSystem& s, const ContactSet& contacts, const std::vector<
     }
     sleep.rest_time[b] = vertex_speed_bound(s.blocks[b], reach[b]) < sleep.sleep_speed ? sleep.rest_time[b] + dt : 0.0;
   }
-  Groups g = touching_groups(s, contacts, false);
+  BlockGroups g = touching_groups(s, contacts, false);
   std::vector<char> ready(n, 1);
   for (size_t b = 0; b < n; ++b)
     if (!s.blocks[b].fixed && !sleep.asleep[b] && sleep.rest_time[b] < sleep.sleep_time) ready[g.find(static_cast<int>(b))] = 0;

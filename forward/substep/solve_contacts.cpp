@@ -3,7 +3,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <optional>
 
 #include "forward/contact/contact_law.hpp"
 #include "forward/contact/slip_history.hpp"
