@@ -1,0 +1,207 @@
+// Impacts into resting blocks are inelastic: nothing comes back. Both solvers take an impact
+// as a perfectly inelastic impulse, so a block driven into blocks at rest may stop or carry
+// them along, but it must not be thrown back: any backward speed is the overlaps' push-out,
+// (implicit solver) the blocks' own elastic spring-back, and the |g| dt below which both
+// solvers take an approach as resting contact. Found on a row of blocks against a wall
+// (tests/test_impact_depth.cpp: 83 % of the impact speed from the substep solver, 45 % from
+// the implicit one until model revision 2026-11-27.8); swept here over the other shapes the
+// same event takes in a slide: a block dropped onto a stack, a block driven into a row free to
+// move, and slow impacts into the walled row. Three of the six sweeps are known defects
+// (disabled, docs/verification.md, "Impacts into resting blocks").
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <initializer_list>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "forward/simulation.hpp"
+#include "verify/cases.hpp"
+
+namespace ddafit {
+namespace {
+
+BlockInput box(const std::string& name, Vec2 centre, double w, double h, bool fixed) {
+  const Vec2 d(0.5 * w, 0.5 * h);
+  return verification::block(name,
+                             {centre - d, centre + Vec2(d.x(), -d.y()), centre + d, centre + Vec2(-d.x(), d.y())},
+                             fixed);
+}
+
+enum class Shape { Stack, FreeRow, WalledRow };
+
+struct Case {
+  Shape shape;
+  double size;    // m, the striker is a square of this side
+  double speed;   // m/s
+  double ratio;   // the struck blocks' thickness along the impact over the striker's size
+  int count;      // struck blocks
+  double step;    // s
+  int substeps;
+  Integrator integrator;
+};
+
+std::string label(const Case& c) {
+  const char* shape = c.shape == Shape::Stack ? "onto a stack of" : c.shape == Shape::FreeRow ? "into a free row of" : "into a walled row of";
+  char text[200];
+  std::snprintf(text, sizeof text, "%s: %g m block at %g m/s %s %d blocks %g m thick, %g ms x %d",
+                c.integrator == Integrator::Implicit ? "implicit" : "substep", c.size, c.speed, shape, c.count,
+                c.ratio * c.size, c.step * 1000, c.substeps);
+  return text;
+}
+
+// The struck blocks rest on a fixed floor (a stack: one on another; a row: side by side, the
+// walled one ending against a fixed wall). The striker starts 1 mm away moving at `speed`
+// towards them (downward onto a stack): the floor's friction (30 deg, 5.7 m/s^2) would stop a
+// slow striker before a longer gap. The history every step.
+constexpr double kGap = 0.001;  // m
+
+Scene scene_of(const Case& c) {
+  Scene s = verification::rock_scene(2500.0, 30.0, 0.5, c.step, c.step);
+  s.options.integrator = c.integrator;
+  s.options.substeps = c.substeps;
+  const double w = c.size, t = c.ratio * c.size;
+  s.blocks.push_back(box("floor", {0.0, -0.5 * w}, 40.0 * w + 4.0 * c.count * t, w, true));
+  BlockInput striker;
+  if (c.shape == Shape::Stack) {
+    for (int i = 0; i < c.count; ++i) {
+      s.blocks.push_back(box("stack_" + std::to_string(i), {0.0, (i + 0.5) * t}, w, t, false));
+      s.measure.push_back({"stack_" + std::to_string(i), {0.0, (i + 0.5) * t}});
+    }
+    striker = box("striker", {0.0, c.count * t + kGap + 0.5 * w}, w, w, false);
+    striker.velocity = Vec2(0.0, -c.speed);
+  } else {
+    double x = 0.5 * w + kGap;
+    for (int i = 0; i < c.count; ++i, x += t) {
+      s.blocks.push_back(box("row_" + std::to_string(i), {x + 0.5 * t, 0.5 * w}, t, w, false));
+      s.measure.push_back({"row_" + std::to_string(i), {x + 0.5 * t, 0.5 * w}});
+    }
+    if (c.shape == Shape::WalledRow) s.blocks.push_back(box("wall", {x + 0.5 * w, w}, w, 2.0 * w, true));
+    striker = box("striker", {0.0, 0.5 * w}, w, w, false);
+    striker.velocity = Vec2(c.speed, 0.0);
+  }
+  s.measure.insert(s.measure.begin(), {"striker", striker.polygon[0] + 0.5 * (striker.polygon[2] - striker.polygon[0])});
+  s.blocks.push_back(striker);
+  return s;
+}
+
+// The bounds, as a share of the impact speed v: 5 % for the substep solver's rigid blocks (the
+// push-out of the overlaps the impact leaves), 10 % for the implicit solver's elastic ones (a
+// 4 m block of 5 GPa springs back by 4-9 % of a 20 m/s impact, tests/test_impact_depth.cpp),
+// and |g| dt / v besides: both solvers take an approach slower than |g| dt as resting contact
+// (docs/theory.md §7a and §13, "Spent impacts"), so that is their resolution of a speed (2 %
+// of a 5 m/s impact at 10 ms, a third of a 0.3 m/s one). Overlaps within the 1 % of the
+// smaller block that Vajont's runs are held to.
+double rebound_bound(Integrator i, double step, double speed) {
+  return (i == Integrator::Implicit ? 0.10 : 0.05) + 9.81 * step / speed;
+}
+constexpr double kOverlapBound = 0.01;
+
+struct Sweep {
+  int runs = 0;
+  // The fastest speed back along the impact over the impact speed: of any block (the free
+  // row: of the striker; the row's tall blocks topple forward and rock as they land).
+  double worst_rebound = 0.0;
+  double worst_excess = -1.0;  // the largest of rebound - rebound_bound
+  double worst_overlap = 0.0;  // of the smaller block
+  std::string worst_case;
+};
+
+Sweep sweep(Shape shape, Integrator integrator, std::initializer_list<double> speeds) {
+  Sweep out;
+  for (const double size : {1.0, 4.0})
+    for (const double speed : speeds)
+      for (const double ratio : {1.0, 0.25})
+        for (const int count : {3, 6})
+          for (const auto& [step, substeps] : {std::pair{0.01, 3}, std::pair{0.005, 4}}) {
+            const Case c{shape, size, speed, ratio, count, step, substeps, integrator};
+            const SimulationResult r = simulate(scene_of(c));
+            const std::string text = label(c);
+            EXPECT_EQ(r.summary.status, RunStatus::Completed) << text << ": " << r.summary.message;
+            const Vec2 along = shape == Shape::Stack ? Vec2(0.0, -1.0) : Vec2(1.0, 0.0);
+            double rebound = 0.0;
+            for (const HistoryRow& h : r.history)
+              if (h.point == 0 || shape != Shape::FreeRow) rebound = std::max(rebound, -h.velocity.dot(along));
+            rebound /= speed;
+            out.worst_excess = std::max(out.worst_excess, rebound - rebound_bound(integrator, step, speed));
+            if (rebound > out.worst_rebound) out.worst_rebound = rebound, out.worst_case = text;
+            out.worst_overlap = std::max(out.worst_overlap, r.summary.solver.worst_penetration_ratio);
+            ++out.runs;
+          }
+  std::printf("[measured] %d impacts: fastest rebound %.3g of the impact speed (%s), worst overlap %.3g, largest "
+              "excess over the bound %.3g\n", out.runs, out.worst_rebound, out.worst_case.c_str(), out.worst_overlap,
+              out.worst_excess);
+  return out;
+}
+
+// A block falling onto a stack of blocks resting on the floor (1 and 4 m, at 2, 5 and
+// 10 m/s; stacks of 3 and 6 blocks as tall as it or a quarter as tall): 48 runs per solver.
+// The implicit solver: 5.1 % worst (bound 10 % + |g| dt / v).
+TEST(ImpactRebound, ABlockDroppedOntoAStackDoesNotBounceOffImplicit) {
+  const Sweep s = sweep(Shape::Stack, Integrator::Implicit, {2.0, 5.0, 10.0});
+  EXPECT_EQ(s.runs, 48);
+  EXPECT_LE(s.worst_excess, 0.0) << s.worst_case;
+  EXPECT_LE(s.worst_overlap, kOverlapBound);
+}
+
+// KNOWN DEFECT (closing notes of 2026-11-27, issue "Blocks slide across joints ..."): the
+// substep solver launches blocks dropped onto a stack: 47 of the 48 drops come back faster
+// than the bound, the worst at 37 times the impact speed (a 1 m block at 10 m/s onto three
+// 1 x 0.25 m blocks, 5 ms x 4); every run completes. The same cause as the walled row's
+// (tests/test_impact_depth.cpp): the next substep's warm start re-applies the impact's
+// impulses to the stopped stack. The candidate mend of branch spent-impacts (the warm start
+// scaled to a group's least kinetic energy) brings it to 11.4 % but triples Vajont's wall.
+TEST(ImpactRebound, DISABLED_ABlockDroppedOntoAStackDoesNotBounceOffSubstep) {
+  const Sweep s = sweep(Shape::Stack, Integrator::Substep, {2.0, 5.0, 10.0});
+  EXPECT_EQ(s.runs, 48);
+  EXPECT_LE(s.worst_excess, 0.0) << s.worst_case;
+  EXPECT_LE(s.worst_overlap, kOverlapBound);
+}
+
+// A block driven into a row that nothing holds: the row is pushed along (its tall blocks
+// topple), the striker is not thrown back. 48 runs. The substep solver: 0.2 % worst.
+TEST(ImpactRebound, ABlockDrivenIntoAFreeRowIsNotThrownBackSubstep) {
+  const Sweep s = sweep(Shape::FreeRow, Integrator::Substep, {2.0, 5.0, 10.0});
+  EXPECT_EQ(s.runs, 48);
+  EXPECT_LE(s.worst_excess, 0.0) << s.worst_case;
+  EXPECT_LE(s.worst_overlap, kOverlapBound);
+}
+
+// KNOWN DEFECT (closing notes of 2026-11-27): the implicit solver throws the striker back at up
+// to 38 % of its impact speed from a free row of six blocks a quarter as wide (a 1 m block at
+// 2-10 m/s; 10-24 % from the 4 m striker), where the walled row gives 8.9 %: in the first step
+// the striker and the first five blocks move backward at 0.7 m/s while the last tips forward,
+// so the floor hands the mass momentum it cannot give through Coulomb friction alone. Not yet
+// traced.
+TEST(ImpactRebound, DISABLED_ABlockDrivenIntoAFreeRowIsNotThrownBackImplicit) {
+  const Sweep s = sweep(Shape::FreeRow, Integrator::Implicit, {2.0, 5.0, 10.0});
+  EXPECT_EQ(s.runs, 48);
+  EXPECT_LE(s.worst_excess, 0.0) << s.worst_case;
+  EXPECT_LE(s.worst_overlap, kOverlapBound);
+}
+
+// Slow impacts into the walled row: 0.3 and 1 m/s, three and ten times the |g| dt of a 10 ms
+// step, where both solvers begin to take an approach as an impact. 32 runs per solver. The
+// implicit solver: 21 % of 0.3 m/s worst (0.064 m/s; bound 10 % + |g| dt / v = 43 %).
+TEST(ImpactRebound, ASlowBlockDrivenIntoAWalledRowIsNotThrownBackImplicit) {
+  const Sweep s = sweep(Shape::WalledRow, Integrator::Implicit, {0.3, 1.0});
+  EXPECT_EQ(s.runs, 32);
+  EXPECT_LE(s.worst_excess, 0.0) << s.worst_case;
+  EXPECT_LE(s.worst_overlap, kOverlapBound);
+}
+
+// KNOWN DEFECT: the walled row's defect (tests/test_impact_depth.cpp) at slow speeds: the
+// substep solver throws blocks back at up to 41 % of a 1 m/s impact (1 m block into three
+// 0.25 m blocks, 5 ms x 4; bound 5 % + |g| dt / v = 15 %).
+TEST(ImpactRebound, DISABLED_ASlowBlockDrivenIntoAWalledRowIsNotThrownBackSubstep) {
+  const Sweep s = sweep(Shape::WalledRow, Integrator::Substep, {0.3, 1.0});
+  EXPECT_EQ(s.runs, 32);
+  EXPECT_LE(s.worst_excess, 0.0) << s.worst_case;
+  EXPECT_LE(s.worst_overlap, kOverlapBound);
+}
+
+}  // namespace
+}  // namespace ddafit
