@@ -1,8 +1,8 @@
 // Impacts into resting blocks are inelastic: nothing comes back. Both solvers take an impact
 // as a perfectly inelastic impulse, so a block driven into blocks at rest may stop or carry
 // them along, but it must not be thrown back: any backward speed is the overlaps' push-out,
-// (implicit solver) the blocks' own elastic spring-back, and the |g| dt below which both
-// solvers take an approach as resting contact. Found on a row of blocks against a wall
+// (implicit solver) the blocks' own elastic spring-back, and |g| dt, the finest speed a step
+// resolves. Found on a row of blocks against a wall
 // (tests/test_impact_depth.cpp: 83 % of the impact speed from the substep solver, 45 % from
 // the implicit one until model revision 2026-11-27.8); swept here over the other shapes the
 // same event takes in a slide: a block dropped onto a stack, a block driven into a row free to
@@ -91,10 +91,10 @@ Scene scene_of(const Case& c) {
 // The bounds, as a share of the impact speed v: 5 % for the substep solver's rigid blocks (the
 // push-out of the overlaps the impact leaves), 10 % for the implicit solver's elastic ones (a
 // 4 m block of 5 GPa springs back by 4-9 % of a 20 m/s impact, tests/test_impact_depth.cpp),
-// and |g| dt / v besides: both solvers take an approach slower than |g| dt as resting contact
-// (docs/theory.md §7a and §13, "Spent impacts"), so that is their resolution of a speed (2 %
-// of a 5 m/s impact at 10 ms, a third of a 0.3 m/s one). Overlaps within the 1 % of the
-// smaller block that Vajont's runs are held to.
+// and |g| dt / v besides: gravity adds |g| dt to every speed in a step, and the implicit
+// solver takes an approach slower than that as resting contact (docs/theory.md §7a), so it is
+// the finest speed a step resolves (2 % of a 5 m/s impact at 10 ms, a third of a 0.3 m/s
+// one). Overlaps within the 1 % of the smaller block that Vajont's runs are held to.
 double rebound_bound(Integrator i, double step, double speed) {
   return (i == Integrator::Implicit ? 0.10 : 0.05) + 9.81 * step / speed;
 }
