@@ -2,8 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <type_traits>
 #include <map>
+#include <type_traits>
 #include <vector>
 
 #include "forward/block_groups.hpp"
