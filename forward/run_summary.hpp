@@ -88,6 +88,11 @@ struct SolverReport {
   long fast_steps = 0;          // steps in which a block moved further than the contact margin allows
   long sleeping_block_steps = 0;  // summed over steps: blocks asleep (control.sleep_time)
   long wakes = 0;                 // sleeping groups woken by a moving block
+  // Substep solver, impact groups (forward/substep/converge_impacts.hpp): groups solved
+  // directly, groups too large for it (left to the sweeps), solves undone (energy).
+  long impact_groups = 0;
+  long impact_groups_too_large = 0;
+  long impact_groups_refused = 0;
 };
 
 // Interrupted: the caller asked the run to stop (SimulationHooks::should_stop) before the

@@ -252,24 +252,21 @@ TEST(ImpactDepth, TheImplicitSolversRowDoesNotThrowTheStrikerBack) {
   EXPECT_LE(rows.worst_rebound[1], 0.10);
 }
 
-// KNOWN DEFECT (issue "Blocks slide across joints ...", closing notes of 2026-11-27): the
-// substep solver throws blocks back at up to 22 % of the impact speed from rows as large as
-// the striker and 83 % from quarter-width rows, and with the history every 5 ms a 1 m block
-// at 10 m/s into six of those stops with "contacts are creating energy" (exit 3 from the
-// command line). Traced: the next substep's warm start re-applies the impact's impulses to
-// blocks that have stopped, and two Gauss-Seidel sweeps cannot unwind them along the row to
-// the wall. Measured mends, none kept: the warm start allowed to grow by at most 4 |g| h of
-// a point's effective mass per substep: 2.0 % here, but Vajont's overlaps rose (section IV
-// degraded 0.55 -> 1.15 %, past the 1 % bound; III 0.43 / 0.41 -> 0.75 / 0.64 %); at 8 |g| h
-// 4.5 % and IV 0.94 %; at 4 |g| h with the extra sweeps on every capped manifold 0.96 % and
-// IV 0.76 %, but 34 % more wall (76 -> 102 s). Before: no warm start 0.1 % (resting masses
-// sink); capped at twice the substep before's impulse 44 %; extra sweeps 54-92 %; 8 / 32 /
-// 128 sweeps over every manifold 33 / 15.5 / 6.6 % (docs/verification.md has the table). The
-// warm start of a group of touching blocks scaled to its least kinetic energy where it
-// overshoots by more than |g| dt (branch spent-impacts): 3.0 %, and drops onto a stack 37 x ->
-// 11 % (tests/test_impact_rebound.cpp), but Vajont VI-VIII took 2.5-3 x the wall and their
-// deposits rattled: a slide is one group, and one landing block cut the whole mass's support.
-TEST(ImpactDepth, DISABLED_TheSubstepSolversRowDoesNotThrowTheStrikerBack) {
+// The substep solver's rows (72 runs, bound 5 %): 4.3 % worst since model revision
+// 2026-11-27.10. Before it, 22 % of the impact speed from rows as large as the striker and
+// 83 % from quarter-width rows, and with the history every 5 ms a 1 m block at 10 m/s into six
+// of those stopped with "contacts are creating energy": the next substep's warm start
+// re-applied the impact's impulses to blocks that had stopped, and two Gauss-Seidel sweeps
+// could not unwind them along the row to the wall. Now the points an impact leaves closing, or
+// pushing apart blocks that separate, are solved as one group directly
+// (forward/substep/converge_impacts.hpp). Measured mends, none kept: the warm start allowed to
+// grow by at most 4 |g| h of a point's effective mass per substep: 2.0 % here, but Vajont's
+// overlaps rose (section IV degraded 0.55 -> 1.15 %); with extra sweeps on every capped
+// manifold 0.96 % but 34 % more wall; no warm start 0.1 % (resting masses sink); 8 / 32 / 128
+// sweeps over every manifold 33 / 15.5 / 6.6 %; the warm start of a whole group of touching
+// blocks scaled to its least kinetic energy (branch spent-impacts): 3.0 %, but Vajont VI-VIII
+// took 2.5-3 x the wall and their deposits rattled (docs/verification.md has the table).
+TEST(ImpactDepth, TheSubstepSolversRowDoesNotThrowTheStrikerBack) {
   const RowResults rows = run_rows({1.0, 0.25}, false, kRowSteps, {Integrator::Substep});
   EXPECT_LE(rows.worst_rebound[0], 0.05);
 }

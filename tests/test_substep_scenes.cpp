@@ -244,7 +244,7 @@ TEST_P(SubstepScenesSolver, HeavyOnLightStaysPut) {
     EXPECT_LT(p.max_total_displacement, kMaxMovement) << label << ": block '" << p.name << "' moved";
   std::cout << "[measured] " << label << ": light moved " << r.summary.points[0].max_total_displacement
             << " m, heavy moved " << r.summary.points[1].max_total_displacement << " m, solver penetration "
-            << r.summary.solver.worst_penetration_ratio << "\n";
+            << r.summary.solver.worst_penetration_ratio << " groups " << r.summary.solver.impact_groups << " large " << r.summary.solver.impact_groups_too_large << " refused " << r.summary.solver.impact_groups_refused << "\n";
 }
 
 INSTANTIATE_TEST_SUITE_P(SubstepScenes, SubstepScenesSolver,

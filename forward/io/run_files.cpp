@@ -101,6 +101,9 @@ std::string summary_json_text(const std::string& scene_path, const SimulationRes
     j["solver"]["fast_steps"] = solver.fast_steps;
     j["solver"]["sleeping_block_steps"] = solver.sleeping_block_steps;
     j["solver"]["wakes"] = solver.wakes;
+    j["solver"]["impact_groups"] = solver.impact_groups;
+    j["solver"]["impact_groups_too_large"] = solver.impact_groups_too_large;
+    j["solver"]["impact_groups_refused"] = solver.impact_groups_refused;
   }
   j["profile_seconds"] = {{"settle", s.profile.settle},
                           {"find_contacts", s.profile.find_contacts},

@@ -10,6 +10,7 @@
 #include "forward/common/containment_check.hpp"
 #include "forward/common/energy_check.hpp"
 #include "forward/substep/block_stress.hpp"
+#include "forward/substep/converge_impacts.hpp"
 #include "forward/substep/integrate.hpp"
 #include "forward/substep/prepare_contacts.hpp"
 #include "forward/substep/solve_contacts.hpp"
@@ -73,6 +74,21 @@ constexpr double kSmoothAccelerationRatio = 2.0;
 // Extra relax sweeps per substep over the deep manifolds and their neighbours
 // (solve_contacts.hpp, converge_deep).
 constexpr int kDeepIterations = 16;
+// Impact groups (converge_impacts.hpp), model revision 2026-11-27.10: after the two sweeps a
+// point still closing faster than kImpactClosingRatio x |g| h, or opening faster than
+// kImpactSpentRatio x |g| h while it pushes, starts a group that is solved directly; |g| h is
+// what gravity adds to a speed in a substep, so resting and steadily sliding contacts stay
+// below both. Measured (with a group's first solve only) on tests/test_impact_rebound.cpp and
+// on Vajont section I degraded (that test's 6.4 s): 1 and 1 pass every sweep but cost 3x;
+// 10 and 10 leave drops on a stack at 20 % of the impact speed and slow walled rows at 35 %;
+// 10 and 5 slow walled rows at 15.4 % (bound 15 %); 10 and 3 pass, at +17 %. The spent
+// speed is at least kImpactSpentRestShare of the scene's rest_speed: with 1 ms x 4 steps
+// 3 |g| h is 7 mm/s, and a heavy block resting on a light one (mass ratio 100), whose two
+// sweeps leave it rocking at 9 mm/s, was solved as an impact every few substeps; each solve
+// took away the warm start the sweeps need to hold it, and the pair sank 4 mm.
+constexpr double kImpactClosingRatio = 10.0;
+constexpr double kImpactSpentRatio = 3.0;
+constexpr double kImpactSpentRestShare = 0.2;
 
 
 // The deepest overlap at the end of the step, relative to the smaller block of its pair;
@@ -137,6 +153,7 @@ void run_one_substep(SubstepContext& w, const SweepSettings& sweep, const Vec2& 
   relax.use_bias = false;
   ScopedTimer timer(w.profile->solve);
   integrate_velocities(w.state, gravity, sweep.h, w.start_velocity);
+  if (w.options.split_impulses) w.state.free_velocity = w.state.velocity;
   warm_start(w.contacts.manifolds, w.colours, w.state);
   if (w.options.split_impulses) {
     // Two sweeps: with one, a slider across joints 0.1 m apart on a 28 deg slope ran 1.8 %
@@ -144,6 +161,17 @@ void run_one_substep(SubstepContext& w, const SweepSettings& sweep, const Vec2& 
     // one block converges over sweeps. Two cost what the soft step's two cost.
     solve_contacts(w.contacts.manifolds, w.colours, relax, w.state);
     solve_contacts(w.contacts.manifolds, w.colours, relax, w.state);
+    // Without gravity, the speed the run counts as converged (measure_contacts) stands for |g| h.
+    const double g = gravity.norm();
+    const double scale = g > 0.0 ? g * sweep.h : kConvergedVelocityRatio * w.max_move / (sweep.h * w.options.substeps);
+    ImpactConvergence impacts;
+    impacts.closing = kImpactClosingRatio * scale;
+    impacts.spent = std::max(kImpactSpentRatio * scale, kImpactSpentRestShare * w.scene.rest_speed);
+    const ImpactCounts counts =
+        w.settling ? ImpactCounts{} : converge_impacts(w.contacts.manifolds, relax, impacts, w.state);
+    w.report.impact_groups += counts.solved;
+    w.report.impact_groups_too_large += counts.too_large;
+    w.report.impact_groups_refused += counts.refused;
     flag_closing_deep(w.contacts.manifolds, sweep.h, w.state);
     converge_deep(w.contacts.manifolds, relax, kDeepIterations, w.state, sweep.h);
     push_out_overlaps(w.contacts.manifolds, w.colours, sweep, w.state);
@@ -247,6 +275,7 @@ std::string quiet_start(SubstepContext& w) {
     if (!touching[b]) s.blocks[b].fixed = true;  // in flight: takes no part
   }
   std::vector<double> before;
+  w.settling = true;
   for (int k = 0; k < kQuietStartSteps; ++k) {
     if (k > 0) detect(w);
     last_normal_impulses(w.contacts.manifolds, before);
@@ -255,6 +284,7 @@ std::string quiet_start(SubstepContext& w) {
     advance(w, w.scene.max_step, false);
     if (impulse_change(w.contacts.manifolds, before) <= kQuietStartTolerance) break;
   }
+  w.settling = false;
   for (size_t b = 0; b < s.blocks.size(); ++b) {
     s.blocks[b].fixed = was_fixed[b];
     s.blocks[b].velocity = initial[b];

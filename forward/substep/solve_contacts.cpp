@@ -128,6 +128,8 @@ double manifold_pass(ContactManifold& m, char& deep, const SweepSettings& settin
   return largest_change;
 }
 
+}  // namespace
+
 // One manifold of a sweep: passes over its points until they agree. The friction impulse
 // at a point below a block's centre turns the block, which moves the normal velocity at
 // both points; one pass leaves that coupling unconverged where an impact's friction should
@@ -141,6 +143,8 @@ void solve_manifold(ContactManifold& m, char& deep, const SweepSettings& setting
     if (change <= kManifoldPassTolerance * scale) break;
   }
 }
+
+namespace {
 
 // The manifolds flagged deep and every other manifold of their moving blocks, in order;
 // `involved` flags those blocks.

@@ -46,6 +46,7 @@ struct SweepState {
   std::vector<Vec3> step_moves;
   std::vector<BlockMass> masses;
   std::vector<Vec3> load_acceleration;  // per block, from loads other than gravity (water); empty if none
+  std::vector<Vec3> free_velocity;  // per block: the substep's velocity before any contact impulse
   std::vector<Vec3> push_velocity;  // per block: this substep's push-out (control.split_impulses)
   std::vector<char> deep;  // per manifold: a point overlapped beyond its deep_overlap in a relax sweep of the step
   // Built when first needed in a step and kept for its substeps and its position correction
@@ -55,6 +56,10 @@ struct SweepState {
 
 // st.of_block, built from `manifolds` if this step has not built it yet.
 const BlockManifolds& block_manifolds(const std::vector<ContactManifold>& manifolds, SweepState& st);
+
+// One manifold of a sweep: passes over its points until they agree (control.contact_passes).
+// Sets `deep` when a relax pass finds a point overlapping beyond its deep_overlap.
+void solve_manifold(ContactManifold& m, char& deep, const SweepSettings& settings, double inv_h, SweepState& st);
 
 void warm_start(const std::vector<ContactManifold>& manifolds, const std::vector<std::vector<int>>& colours,
                 SweepState& state);

@@ -32,6 +32,7 @@ struct SubstepContext {
   GroundTrack ground;     // the earthquake, if any (forward/earthquake/ground_motion.hpp)
   double time = 0.0;      // s, the start of the step being advanced
   double load_work = 0.0; // J/m: the ground's inertial load's work in the last step, substep by substep
+  bool settling = false;  // the quiet start: no impact groups (converge_impacts.hpp), nothing strikes
 
   ContactDetection detection;
   PositionCorrection correction;

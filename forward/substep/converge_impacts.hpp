@@ -1,0 +1,45 @@
+// Stage 4b of a substep (split impulses), after the two velocity sweeps: impacts solved where
+// they happen. Gauss-Seidel hands an impulse on by about one contact per colour per sweep, so
+// two sweeps leave an impact into a chain of blocks unconverged (a row driven against a wall, a
+// stack a block lands on): blocks still closing on each other, and at the next substep the
+// warm start re-applies the impact's impulses to blocks that have since stopped, throwing the
+// striker back (83 % of its impact speed from a walled row; a block dropped on a stack came
+// back at 86 %; tests/test_impact_depth.cpp, tests/test_impact_rebound.cpp). More sweeps do not
+// cure it (40 sweeps per substep: still 14 %). This stage finds the points that break the
+// normal contact's complementarity by an impact's margin after the sweeps, still closing into
+// contact (faster than `closing`) or pushing apart blocks that separate (faster than `spent`:
+// a spent impulse the warm start brought back), and solves each group of them, with every
+// other manifold of their blocks, directly (docs/theory.md §13c).
+#pragma once
+
+#include <vector>
+
+#include "forward/substep/solve_contacts.hpp"
+
+namespace ddafit {
+
+struct ImpactConvergence {
+  double closing = 0.0;  // m/s: a point closing faster than this beyond its gap is an impact
+  double spent = 0.0;    // m/s: a pushing point opening faster than this carries a spent impulse
+  // A group is solved directly up to this many contact points (a dense solve); larger ones keep
+  // the sweeps' answer. 160: rows and stacks of ten blocks with their floor and the manifolds
+  // within the contact margin (tests/test_impact_rebound.cpp; a walled row of ten 0.25 m blocks
+  // struck at 10 m/s threw the striker back at 1.5 m/s with a cap of 40). Vajont section VII
+  // degraded: 346,274 groups solved, 114,886 larger (docs/performance.md).
+  int max_points = 160;
+  // Rounds of taking in the neighbouring manifolds a solve left open: a stack of ten needed
+  // more than four (at four a dropped block came back at 19 %).
+  int max_rounds = 8;
+};
+
+struct ImpactCounts {
+  long solved = 0;     // groups solved directly
+  long too_large = 0;  // groups left to the sweeps (more than max_points points)
+  long refused = 0;    // solves undone: they would have raised the group's kinetic energy
+};
+
+// Solves the impact groups of this substep in place (velocities and impulses of `state`).
+ImpactCounts converge_impacts(std::vector<ContactManifold>& manifolds, const SweepSettings& relax,
+                              const ImpactConvergence& settings, SweepState& state);
+
+}  // namespace ddafit
