@@ -25,7 +25,7 @@ struct ImpactConvergence {
   // the sweeps' answer. 160: rows and stacks of ten blocks with their floor and the manifolds
   // within the contact margin (tests/test_impact_rebound.cpp; a walled row of ten 0.25 m blocks
   // struck at 10 m/s threw the striker back at 1.5 m/s with a cap of 40). Vajont section VII
-  // degraded: 346,274 groups solved, 114,886 larger (docs/performance.md).
+  // degraded: 368,001 groups solved, 121,567 larger (docs/performance.md).
   int max_points = 160;
   // Rounds of taking in the neighbouring manifolds a solve left open: a stack of ten needed
   // more than four (at four a dropped block came back at 19 %).

@@ -74,18 +74,12 @@ constexpr double kSmoothAccelerationRatio = 2.0;
 // Extra relax sweeps per substep over the deep manifolds and their neighbours
 // (solve_contacts.hpp, converge_deep).
 constexpr int kDeepIterations = 16;
-// Impact groups (converge_impacts.hpp), model revision 2026-11-27.10: after the two sweeps a
-// point still closing faster than kImpactClosingRatio x |g| h, or opening faster than
-// kImpactSpentRatio x |g| h while it pushes, starts a group that is solved directly; |g| h is
-// what gravity adds to a speed in a substep, so resting and steadily sliding contacts stay
-// below both. Measured (with a group's first solve only) on tests/test_impact_rebound.cpp and
-// on Vajont section I degraded (that test's 6.4 s): 1 and 1 pass every sweep but cost 3x;
-// 10 and 10 leave drops on a stack at 20 % of the impact speed and slow walled rows at 35 %;
-// 10 and 5 slow walled rows at 15.4 % (bound 15 %); 10 and 3 pass, at +17 %. The spent
-// speed is at least kImpactSpentRestShare of the scene's rest_speed: with 1 ms x 4 steps
-// 3 |g| h is 7 mm/s, and a heavy block resting on a light one (mass ratio 100), whose two
-// sweeps leave it rocking at 9 mm/s, was solved as an impact every few substeps; each solve
-// took away the warm start the sweeps need to hold it, and the pair sank 4 mm.
+// Impact groups (converge_impacts.hpp), model revision 2026-11-27.10: a point still closing
+// faster than kImpactClosingRatio x |g| h after the sweeps, or opening faster than
+// kImpactSpentRatio x |g| h (at least kImpactSpentRestShare x rest_speed) while it pushes,
+// starts a group. |g| h is what gravity adds to a speed in a substep. The margins and the
+// rest_speed floor (a heavy block on a light one sank 4 mm without it) are measured in
+// docs/theory.md §13, "Impact groups".
 constexpr double kImpactClosingRatio = 10.0;
 constexpr double kImpactSpentRatio = 3.0;
 constexpr double kImpactSpentRestShare = 0.2;
