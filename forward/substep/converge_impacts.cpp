@@ -151,16 +151,6 @@ void solve_normal_impulses(const Eigen::MatrixXd& A, const Eigen::VectorXd& r0, 
   }
 }
 
-// Applies impulse P at point p: -P on block a, +P on block b.
-void apply_at(const ContactManifold& m, const ContactPoint& p, const Vec2& impulse, SweepState& st) {
-  Vec3& va = st.velocity[m.block_a];
-  Vec3& vb = st.velocity[m.block_b];
-  const BlockMass& ma = st.masses[m.block_a];
-  const BlockMass& mb = st.masses[m.block_b];
-  va -= Vec3(ma.inverse_mass * impulse.x(), ma.inverse_mass * impulse.y(), ma.inverse_inertia * cross2(p.ra, impulse));
-  vb += Vec3(mb.inverse_mass * impulse.x(), mb.inverse_mass * impulse.y(), mb.inverse_inertia * cross2(p.rb, impulse));
-}
-
 // The group's normal impulses solved together, the friction impulses held under their new
 // Coulomb caps, then one sweep of the group so that friction settles with them (without it the
 // walled row still threw the striker back at 18 %). Returns false, with nothing changed, when
@@ -200,7 +190,8 @@ bool solve_group(std::vector<ContactManifold>& manifolds, const std::vector<int>
     const double normal = std::max(lambda0[i] + d[i], floor[i]);
     const double cap = coulomb_cap(m.friction, normal, p.impulse.cohesion);
     const double tangent = std::clamp(p.impulse.tangent, -cap, cap);
-    apply_at(m, p, (normal - p.impulse.normal) * m.normal + (tangent - p.impulse.tangent) * m.tangent, st);
+    apply_impulse(st.velocity[m.block_a], st.velocity[m.block_b], st.masses[m.block_a], st.masses[m.block_b], p,
+                  (normal - p.impulse.normal) * m.normal + (tangent - p.impulse.tangent) * m.tangent);
     p.impulse.normal = normal;
     p.impulse.tangent = tangent;
   }

@@ -38,17 +38,6 @@ void for_each_coloured(const std::vector<std::vector<int>>& colours, Body&& body
 // Position correction: the largest ratio of two free blocks' inverse masses it uses.
 constexpr double kCorrectionMassRatio = 1.0;
 
-// Applies impulse P (a vector) at the point: -P on block a, +P on block b.
-inline void apply(Vec3& va, Vec3& vb, const BlockMass& ma, const BlockMass& mb, const ContactPoint& p,
-                  const Vec2& impulse) {
-  va[0] -= ma.inverse_mass * impulse.x();
-  va[1] -= ma.inverse_mass * impulse.y();
-  va[2] -= ma.inverse_inertia * cross2(p.ra, impulse);
-  vb[0] += mb.inverse_mass * impulse.x();
-  vb[1] += mb.inverse_mass * impulse.y();
-  vb[2] += mb.inverse_inertia * cross2(p.rb, impulse);
-}
-
 }  // namespace
 
 ContactSoftness make_softness(double hertz, double zeta, double h) {
@@ -67,7 +56,7 @@ void warm_start(const std::vector<ContactManifold>& manifolds, const std::vector
     Vec3& vb = st.velocity[m.block_b];
     for (int q = 0; q < m.point_count; ++q) {
       const ContactPoint& p = m.points[q];
-      apply(va, vb, st.masses[m.block_a], st.masses[m.block_b], p,
+      apply_impulse(va, vb, st.masses[m.block_a], st.masses[m.block_b], p,
             p.impulse.normal * m.normal + p.impulse.tangent * m.tangent);
     }
   });
@@ -114,14 +103,14 @@ double manifold_pass(ContactManifold& m, char& deep, const SweepSettings& settin
     // Contact law: compression only, unless a bond holds tension (tension cut-off).
     const double total = std::max(p.impulse.normal + change, -p.impulse.tension);
     const double normal_change = total - p.impulse.normal;
-    apply(va, vb, ma, mb, p, normal_change * m.normal);
+    apply_impulse(va, vb, ma, mb, p, normal_change * m.normal);
     p.impulse.normal = total;
 
     // Friction: the Mohr-Coulomb cap, mu N (seed Eq. 2-3 for mu) plus cohesion while bonded.
     const double cap = coulomb_cap(m.friction, p.impulse.normal, p.impulse.cohesion);
     const double vt = m.tangent.dot(velocity_at(vb, p.rb) - velocity_at(va, p.ra));
     const double tangent = std::clamp(p.impulse.tangent - p.impulse.tangent_mass * vt, -cap, cap);
-    apply(va, vb, ma, mb, p, (tangent - p.impulse.tangent) * m.tangent);
+    apply_impulse(va, vb, ma, mb, p, (tangent - p.impulse.tangent) * m.tangent);
     largest_change = std::max({largest_change, std::abs(normal_change), std::abs(tangent - p.impulse.tangent)});
     p.impulse.tangent = tangent;
   }
@@ -206,7 +195,7 @@ void push_out_overlaps(std::vector<ContactManifold>& manifolds, const std::vecto
         const double un = normal_rate(m, p, st.push_velocity);
         const double total = std::max(p.impulse.push_out + p.impulse.normal_mass * (target - un), 0.0);
         const double change = total - p.impulse.push_out;
-        apply(ua, ub, ma, mb, p, change * m.normal);
+        apply_impulse(ua, ub, ma, mb, p, change * m.normal);
         p.impulse.push_out = total;
         largest = std::max(largest, std::abs(change));
         scale = std::max(scale, total);
@@ -343,7 +332,7 @@ void correct_positions(const std::vector<ContactManifold>& manifolds, const Posi
         const double correction = std::min(settings.fraction * excess, settings.max_correction);
         const double ca = cross2(p.ra, m.normal), cb = cross2(p.rb, m.normal);
         const double k_n = ma.inverse_mass + mb.inverse_mass + ma.inverse_inertia * ca * ca + mb.inverse_inertia * cb * cb;
-        if (k_n > 0.0) apply(da, db, ma, mb, p, (correction / k_n) * m.normal), moved = true;
+        if (k_n > 0.0) apply_impulse(da, db, ma, mb, p, (correction / k_n) * m.normal), moved = true;
       }
       if (moved) corrected = true, bring_in(m.block_a), bring_in(m.block_b);
     }

@@ -57,6 +57,17 @@ struct SweepState {
 // st.of_block, built from `manifolds` if this step has not built it yet.
 const BlockManifolds& block_manifolds(const std::vector<ContactManifold>& manifolds, SweepState& st);
 
+// Applies impulse P (a vector) at the point: -P on block a, +P on block b.
+inline void apply_impulse(Vec3& va, Vec3& vb, const BlockMass& ma, const BlockMass& mb, const ContactPoint& p,
+                          const Vec2& impulse) {
+  va[0] -= ma.inverse_mass * impulse.x();
+  va[1] -= ma.inverse_mass * impulse.y();
+  va[2] -= ma.inverse_inertia * cross2(p.ra, impulse);
+  vb[0] += mb.inverse_mass * impulse.x();
+  vb[1] += mb.inverse_mass * impulse.y();
+  vb[2] += mb.inverse_inertia * cross2(p.rb, impulse);
+}
+
 // One manifold of a sweep: passes over its points until they agree (control.contact_passes).
 // Sets `deep` when a relax pass finds a point overlapping beyond its deep_overlap.
 void solve_manifold(ContactManifold& m, char& deep, const SweepSettings& settings, double inv_h, SweepState& st);
