@@ -91,9 +91,17 @@ ContactCheck check_contacts(const BlockSystem& s, ContactSet& contacts, const Ei
       // wins too: a sliding point locks only when its slip has turned against its friction
       // force, and held sliding it would push the blocks along (friction doing work on them:
       // a stack of five blocks rocked itself over that way).
+      // And opening wins where the spring is stretched beyond the contact tolerance: held
+      // closed, it pulls the blocks together, a glue no rock joint has. Until revision
+      // 2026-11-28.1 it did: a frozen point under 5 MN/m of tension held a row of tall blocks
+      // down at one end while the other end's corner took 5 MN/m of compression, whose
+      // friction stopped the sliding row within a step, and the step's velocity update then
+      // threw the row back at 0.4 of its speed (tests/test_impact_rebound.cpp, free rows).
       const bool closing = before == ContactState::Open && c.state != ContactState::Open;
       const bool locking = before == ContactState::Sliding && c.state == ContactState::Locked;
-      if (c.state != before && c.state_changes >= kFreezeAfterChanges && !closing && !locking) {
+      const bool opening = before != ContactState::Open && c.state == ContactState::Open &&
+                           c.normal_gap - spring_reference(p, step) > step.contact_tolerance;
+      if (c.state != before && c.state_changes >= kFreezeAfterChanges && !closing && !locking && !opening) {
         c.state = before;
         c.normal_force = before == ContactState::Open ? 0.0 : std::max(compression, 0.0);
         ++result.frozen;

@@ -5,6 +5,7 @@
 
 #include "forward/common/displace_block.hpp"
 #include "forward/common/energy_check.hpp"
+#include "forward/step/update_blocks.hpp"
 #include "forward/water/hydrostatic.hpp"
 
 namespace ddafit {
@@ -59,8 +60,9 @@ DeepestPoint max_penetration(const ImplicitStepContext& ctx, const StepParameter
 // centroid, and the water's force and moment half a step ahead) over the blocks' rigid-body
 // moves. Strain rates carry no kinetic energy here, as in the run's energy audit
 // (forward/common/energy_check.hpp). The velocities are the step's own update
-// (update_blocks.cpp): v1 = 2 d / dt - v0. `scale` returns the kinetic energy before the step
-// plus the audit's floor, 1e-4 x weight x H, against which the gain is judged.
+// (update_blocks.hpp, step_velocity: v1 = 2 d / dt - v0 unless the step stopped the block
+// impulsively). `scale` returns the kinetic energy before the step plus the audit's floor,
+// 1e-4 x weight x H, against which the gain is judged.
 double created_energy(const BlockSystem& s, const Eigen::VectorXd& d, const StepParameters& step, double* scale) {
   double created = 0.0, before = 0.0;
   const double dt = step.time_step, g = step.gravity.norm();
@@ -72,7 +74,7 @@ double created_energy(const BlockSystem& s, const Eigen::VectorXd& d, const Step
     if (s.water.present()) work += water_load(s, b, g, 0.5 * dt * block.velocity.head<3>()).head<3>().dot(db.head<3>());
     const double kinetic = block_kinetic_energy(s, b, block.velocity);
     before += kinetic;
-    created += block_kinetic_energy(s, b, (2.0 / dt) * db - block.velocity) - kinetic - work;
+    created += block_kinetic_energy(s, b, step_velocity(block, db, dt, g)) - kinetic - work;
   }
   *scale = before + energy_floor(s, step.gravity);
   return created;

@@ -13,4 +13,9 @@ namespace ddafit {
 // accepted attempt; the shear springs are at the current penalty (ctx.control).
 void update_blocks(ImplicitStepContext& ctx, double time_step);
 
+// A block's velocity at the end of a step of length dt with unknowns d (6), from its
+// velocity at the start (b.velocity); `gravity` is |g|, m/s^2. Used by update_blocks and by
+// the step's energy judgement (judge_step.cpp), so both read the same velocities.
+Vec6 step_velocity(const Block& b, const Vec6& d, double dt, double gravity);
+
 }  // namespace ddafit
