@@ -100,7 +100,7 @@ ContactCheck check_contacts(const BlockSystem& s, ContactSet& contacts, const Ei
       const bool closing = before == ContactState::Open && c.state != ContactState::Open;
       const bool locking = before == ContactState::Sliding && c.state == ContactState::Locked;
       const bool opening = before != ContactState::Open && c.state == ContactState::Open &&
-                           c.normal_gap - spring_reference(p, step) > step.contact_tolerance;
+                           c.normal_gap > step.contact_tolerance;
       if (c.state != before && c.state_changes >= kFreezeAfterChanges && !closing && !locking && !opening) {
         c.state = before;
         c.normal_force = before == ContactState::Open ? 0.0 : std::max(compression, 0.0);
