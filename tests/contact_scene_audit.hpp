@@ -180,9 +180,9 @@ struct RunAudit {
       audit.floor = kEnergyFloorHeight * weight;
     }
     ++audit.outputs;
-    // Work of gravity since t = 0 with the masses of t = 0: potential_energy() takes the
-    // current areas, which strain changes by ~1e-5, and that times m g y would depend on
-    // where the origin is.
+    // Work of gravity since t = 0 with the masses of t = 0, as the run's own audit does
+    // (energy_check.hpp): the current areas change with strain by ~1e-5, and that times
+    // m g y would depend on where the origin is.
     double work = 0.0;
     for (int b = 0; b < n; ++b)
       if (!s.blocks[b].fixed) work += audit.mass[b] * gravity.dot(s.blocks[b].centroid - audit.centroid0[b]);

@@ -28,31 +28,32 @@ double energy_floor(const BlockSystem& s, const Vec2& gravity) {
   return 1e-4 * weight * s.half_model_size;
 }
 
-double potential_energy(const BlockSystem& s, const Vec2& gravity) {
-  double energy = 0.0;
+double released_energy(const EnergyAudit& audit, const BlockSystem& s, const Vec2& gravity) {
+  double work = 0.0;
   for (int b = 0; b < static_cast<int>(s.blocks.size()); ++b)
-    if (!s.blocks[b].fixed) energy -= s.mass(b) * gravity.dot(s.blocks[b].centroid);
-  return energy + water_potential(s, gravity.norm());
+    if (!s.blocks[b].fixed) work += audit.mass[b] * gravity.dot(s.blocks[b].centroid - audit.centroid[b]);
+  return work + audit.initial_water - water_potential(s, gravity.norm());
 }
 
-Vec2 mass_moment(const BlockSystem& s) {
-  Vec2 moment = Vec2::Zero();
-  for (int b = 0; b < static_cast<int>(s.blocks.size()); ++b)
-    if (!s.blocks[b].fixed) moment += s.mass(b) * s.blocks[b].centroid;
-  return moment;
-}
-
-void add_load_work(EnergyAudit& audit, const BlockSystem& s, const Vec2& acceleration, const Vec2& before) {
-  audit.load_work -= acceleration.dot(mass_moment(s) - before);
+void add_load_work(EnergyAudit& audit, const Vec2& acceleration, const Vec2& moved) {
+  audit.load_work -= acceleration.dot(moved);
 }
 
 EnergyAudit start_energy_audit(const BlockSystem& s, const Vec2& gravity) {
-  return {kinetic_energy(s), potential_energy(s, gravity), energy_floor(s, gravity)};
+  EnergyAudit audit;
+  audit.initial_kinetic = kinetic_energy(s);
+  for (int b = 0; b < static_cast<int>(s.blocks.size()); ++b) {
+    audit.mass.push_back(s.mass(b));
+    audit.centroid.push_back(s.blocks[b].centroid);
+  }
+  audit.initial_water = water_potential(s, gravity.norm());
+  audit.floor = energy_floor(s, gravity);
+  return audit;
 }
 
 std::string check_energy(const EnergyAudit& audit, const BlockSystem& s, const Vec2& gravity) {
   const double kinetic = kinetic_energy(s);
-  const double released = audit.initial_potential - potential_energy(s, gravity);
+  const double released = released_energy(audit, s, gravity);
   const double budget = audit.initial_kinetic + released + audit.load_work;
   const double scale =
       audit.initial_kinetic + std::abs(released) + std::abs(audit.load_work) + audit.floor + 1e-300;

@@ -160,9 +160,14 @@ void run_implicit(const Scene& scene, BlockSystem& system, RunRecorder& recorder
 
     {
       ScopedTimer timer(profile.update);
-      const Vec2 moment = ground.present() ? mass_moment(system) : Vec2::Zero();
+      if (ground.present()) {  // the load -m a_g over the centroids' moves, D's translation
+        Vec2 moved = Vec2::Zero();
+        for (int b = 0; b < static_cast<int>(system.blocks.size()); ++b)
+          if (system.blocks[b].unknown >= 0)
+            moved += audit.mass[b] * ctx.equations.d.segment<2>(6 * system.blocks[b].unknown);
+        add_load_work(audit, ground.mean_acceleration(time, time + attempt), moved);
+      }
       update_blocks(ctx, attempt);
-      if (ground.present()) add_load_work(audit, system, ground.mean_acceleration(time, time + attempt), moment);
     }
     time = landing >= 0.0 ? landing : time + attempt;
     measure_overlaps(system, ctx.contacts, time, ctx.worst);
