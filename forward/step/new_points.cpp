@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "forward/step/assemble.hpp"
+
 namespace ddafit {
 
 double relative_slide(const BlockSystem& s, const ContactManifold& m, const ContactPoint& p) {
@@ -23,6 +25,23 @@ void start_new_points(const BlockSystem& s, ContactSet& contacts, double dt, dou
       p.spring.slip_direction = slide > 0.0 ? 1.0 : -1.0;
       p.spring.normal_force = 0.0;
       p.spring.shear_offset = 0.0;
+    }
+  }
+}
+
+void start_impact_slides(const BlockSystem& s, ContactSet& contacts, const std::vector<char>& struck, double dt,
+                         double slip_tolerance, double shear_penalty) {
+  for (ContactManifold& m : contacts.manifolds) {
+    if (!struck[m.block_a] && !struck[m.block_b]) continue;
+    for (int q = 0; q < m.point_count; ++q) {
+      ContactPoint& p = m.points[q];
+      SpringState& c = p.spring;
+      if (c.state != ContactState::Locked || p.bonded) continue;
+      const double slide = relative_slide(s, m, p) * dt;
+      if (std::abs(slide) <= slip_tolerance) continue;
+      c.state = c.step_state = ContactState::Sliding;
+      c.slip_direction = slide > 0.0 ? 1.0 : -1.0;
+      c.shear_offset = c.slip_direction * sliding_friction_force(m, p) / shear_penalty;
     }
   }
 }

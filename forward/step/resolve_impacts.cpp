@@ -41,7 +41,8 @@ struct Impact {
 
 }  // namespace
 
-int resolve_impacts(ImplicitStepContext& ctx, double dt) {
+int resolve_impacts(ImplicitStepContext& ctx, double dt, std::vector<char>& struck) {
+  struck.assign(ctx.system.blocks.size(), 0);
   BlockSystem& s = ctx.system;
   std::vector<ContactManifold>& manifolds = ctx.contacts.manifolds;
   // Rigid inverse mass and moment of inertia about the centroid, per unit thickness.
@@ -146,6 +147,10 @@ int resolve_impacts(ImplicitStepContext& ctx, double dt) {
       } else {
         for (int k = 0; k < kMaxSweeps; ++k)
           if (sweep(group) <= kSpeedTolerance * approach) break;
+        for (const int n : group) {
+          const ContactManifold& m = manifolds[impacts[n].manifold];
+          struck[m.block_a] = struck[m.block_b] = 1;
+        }
       }
     }
   }

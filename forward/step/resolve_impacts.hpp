@@ -1,6 +1,8 @@
 // Stage 1c of a step, before the open-close iteration: impacts are resolved as impulses.
 #pragma once
 
+#include <vector>
+
 #include "forward/step/implicit_context.hpp"
 
 namespace ddafit {
@@ -17,7 +19,9 @@ namespace ddafit {
 // so the point closes at the end of the step; with it goes a Coulomb friction impulse of
 // at most tan(phi) times the normal one (Mohr-Coulomb, seed Eq. 2-3 for phi), which may
 // stop the slip but not reverse it. `time_step` is the step the impulses are sized for.
-// Changes the blocks' velocities (the V0 of the step); returns how many points it stopped.
-int resolve_impacts(ImplicitStepContext& ctx, double time_step);
+// Changes the blocks' velocities (the V0 of the step); returns how many points it stopped
+// and marks in `struck` (one entry per block) the blocks of the impact groups, those whose
+// fastest approach exceeded |g| dt (not the resting groups it only settles).
+int resolve_impacts(ImplicitStepContext& ctx, double time_step, std::vector<char>& struck);
 
 }  // namespace ddafit

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <sstream>
+#include <vector>
 
 #include "forward/contact/detect_contacts.hpp"
 #include "forward/contact/overlap.hpp"
@@ -128,7 +129,11 @@ void run_implicit(const Scene& scene, BlockSystem& system, RunRecorder& recorder
     }
     {
       ScopedTimer timer(profile.update);
-      resolve_impacts(ctx, control.step);
+      std::vector<char> struck;  // per block: in an impact this step
+      if (resolve_impacts(ctx, control.step, struck) > 0)
+        start_impact_slides(system, ctx.contacts, struck, control.step,
+                            options.contact_tolerance_ratio * control.max_displacement,
+                            options.shear_penalty_ratio * control.penalty);
     }
     ctx.saved = ctx.contacts;
     bool accepted = false;
