@@ -15,10 +15,10 @@ struct EnergyAudit {
   double initial_kinetic = 0.0;  // J per metre of thickness
   // Each block's mass and centroid at t = 0, per block id. Gravity's work is counted with
   // these masses over the centroids' moves: a block's current mass, density x area, changes
-  // with its strain, and times m g y that change depends on where the origin is. Counted
-  // so until revision 2026-11-28.2, the implicit Vajont section I run's blocks swelled by
-  // 5.5 m2 in all in its first 0.1 s, which at 1000 m of elevation read as 1.3e8 J/m of
-  // potential energy gained: the audit then saw the slide's kinetic energy as created.
+  // with its strain, and times m g y that change depends on where the origin is. With the
+  // current masses (until revision 2026-11-28.3) the implicit Vajont section I run's blocks
+  // swelled by 5.5 m2 in all in its first 0.1 s, which at 1000 m of elevation read as
+  // 1.3e8 J/m of potential energy gained: the audit saw the slide's kinetic energy as created.
   std::vector<double> mass;
   std::vector<Vec2> centroid;
   double initial_water = 0.0;  // the water's potential at t = 0 (water_potential)

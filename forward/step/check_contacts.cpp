@@ -91,8 +91,8 @@ ContactCheck check_contacts(const BlockSystem& s, ContactSet& contacts, const Ei
       // wins too: a sliding point locks only when its slip has turned against its friction
       // force, and held sliding it would push the blocks along (friction doing work on them:
       // a stack of five blocks rocked itself over that way).
-      // And opening wins where the spring is stretched beyond the contact tolerance: held
-      // closed, it pulls the blocks together, a glue no rock joint has. Until revision
+      // And opening wins where the gap is open by more than the contact tolerance: held
+      // closed, the spring pulls the blocks together, a glue no rock joint has. Until revision
       // 2026-11-28.1 it did: a frozen point under 5 MN/m of tension held a row of tall blocks
       // down at one end while the other end's corner took 5 MN/m of compression, whose
       // friction stopped the sliding row within a step, and the step's velocity update then

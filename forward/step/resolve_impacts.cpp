@@ -147,9 +147,10 @@ int resolve_impacts(ImplicitStepContext& ctx, double dt, std::vector<char>& stru
       } else {
         for (int k = 0; k < kMaxSweeps; ++k)
           if (sweep(group) <= kSpeedTolerance * approach) break;
-        for (const int n : group) {
+        for (const int n : group) {  // the group's free blocks (a fixed one joins no group)
           const ContactManifold& m = manifolds[impacts[n].manifold];
-          struck[m.block_a] = struck[m.block_b] = 1;
+          for (const int b : {m.block_a, m.block_b})
+            if (!s.blocks[b].fixed) struck[b] = 1;
         }
       }
     }
