@@ -60,8 +60,10 @@ std::string label(const Case& c) {
 // walled one ending against a fixed wall). The striker starts 1 mm away moving at `speed`
 // towards them (downward onto a stack): the floor's friction (30 deg, 5.7 m/s^2) would stop a
 // slow striker before a longer gap (the default Case::gap, 1 mm). The history every step.
+constexpr double kDensity = 2500.0;  // kg/m^3, every block
+
 Scene scene_of(const Case& c) {
-  Scene s = verification::rock_scene(2500.0, c.friction, 0.5, c.step, c.step);
+  Scene s = verification::rock_scene(kDensity, c.friction, 0.5, c.step, c.step);
   s.options.integrator = c.integrator;
   s.options.substeps = c.substeps;
   const double w = c.size, t = c.ratio * c.size;
@@ -130,7 +132,7 @@ struct Sweep {
 // largest excess over a run, as a share of P_x(0). Every block carries one measure point, at
 // its centroid (scene_of).
 double momentum_beyond_friction(const Case& c, const std::vector<HistoryRow>& history) {
-  const double striker = 2500.0 * c.size * c.size, block = 2500.0 * c.ratio * c.size * c.size;
+  const double striker = kDensity * c.size * c.size, block = kDensity * c.ratio * c.size * c.size;
   const double total = striker + c.count * block, mu = std::tan(c.friction * M_PI / 180.0);
   const double p0 = striker * c.speed;
   double worst = 0.0;
@@ -152,26 +154,26 @@ Sweep sweep(Shape shape, Integrator integrator, std::initializer_list<double> sp
       for (const double ratio : {1.0, 0.25})
         for (const int count : counts)
           for (const double friction : frictions)
-          for (const auto& [step, substeps] : {std::pair{0.01, 3}, std::pair{0.005, 4}}) {
-            Case c{shape, size, speed, ratio, count, step, substeps, integrator};
-            c.friction = friction;
-            const SimulationResult r = simulate(scene_of(c));
-            const std::string text = label(c);
-            EXPECT_EQ(r.summary.status, RunStatus::Completed) << text << ": " << r.summary.message;
-            const Vec2 along = shape == Shape::Stack ? Vec2(0.0, -1.0) : Vec2(1.0, 0.0);
-            double rebound = 0.0;
-            for (const HistoryRow& h : r.history)
-              if (h.point == 0 || shape != Shape::FreeRow) rebound = std::max(rebound, -h.velocity.dot(along));
-            rebound /= speed;
-            out.worst_excess = std::max(out.worst_excess, rebound - rebound_bound(integrator, step, speed));
-            if (rebound > out.worst_rebound) out.worst_rebound = rebound, out.worst_case = text;
-            out.worst_overlap = std::max(out.worst_overlap, r.summary.solver.worst_penetration_ratio);
-            if (shape == Shape::FreeRow) {
-              const double beyond = momentum_beyond_friction(c, r.history);
-              if (beyond > out.worst_momentum) out.worst_momentum = beyond, out.worst_momentum_case = text;
+            for (const auto& [step, substeps] : {std::pair{0.01, 3}, std::pair{0.005, 4}}) {
+              Case c{shape, size, speed, ratio, count, step, substeps, integrator};
+              c.friction = friction;
+              const SimulationResult r = simulate(scene_of(c));
+              const std::string text = label(c);
+              EXPECT_EQ(r.summary.status, RunStatus::Completed) << text << ": " << r.summary.message;
+              const Vec2 along = shape == Shape::Stack ? Vec2(0.0, -1.0) : Vec2(1.0, 0.0);
+              double rebound = 0.0;
+              for (const HistoryRow& h : r.history)
+                if (h.point == 0 || shape != Shape::FreeRow) rebound = std::max(rebound, -h.velocity.dot(along));
+              rebound /= speed;
+              out.worst_excess = std::max(out.worst_excess, rebound - rebound_bound(integrator, step, speed));
+              if (rebound > out.worst_rebound) out.worst_rebound = rebound, out.worst_case = text;
+              out.worst_overlap = std::max(out.worst_overlap, r.summary.solver.worst_penetration_ratio);
+              if (shape == Shape::FreeRow) {
+                const double beyond = momentum_beyond_friction(c, r.history);
+                if (beyond > out.worst_momentum) out.worst_momentum = beyond, out.worst_momentum_case = text;
+              }
+              ++out.runs;
             }
-            ++out.runs;
-          }
   std::printf("[measured] %d impacts: fastest rebound %.3g of the impact speed (%s), worst overlap %.3g, largest "
               "excess over the bound %.3g\n", out.runs, out.worst_rebound, out.worst_case.c_str(), out.worst_overlap,
               out.worst_excess);
