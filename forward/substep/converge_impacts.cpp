@@ -82,7 +82,10 @@ struct JacobianRow {
 };
 
 // The Delassus matrix A = J W J^T of the points (W the blocks' inverse masses and inertias):
-// A d is the change of the points' normal velocities that normal impulses d make.
+// A d is the change of the points' normal velocities that normal impulses d make. Rows meet
+// only on a shared moving block, so they are taken block by block (sorted by block): the
+// cost is the sum of each block's rows squared, not (2n)^2. An entry gets at most two terms
+// (its two points share at most both blocks), so the order of the sum does not change it.
 Eigen::MatrixXd delassus(const std::vector<ContactManifold>& manifolds, const std::vector<GroupPoint>& points,
                          const SweepState& st) {
   const int n = static_cast<int>(points.size());
@@ -94,14 +97,25 @@ Eigen::MatrixXd delassus(const std::vector<ContactManifold>& manifolds, const st
     rows.push_back({m.block_a, -Eigen::Vector3d(m.normal.x(), m.normal.y(), cross2(p.ra, m.normal))});
     rows.push_back({m.block_b, Eigen::Vector3d(m.normal.x(), m.normal.y(), cross2(p.rb, m.normal))});
   }
+  std::vector<int> order;
+  order.reserve(2 * n);
+  for (int i = 0; i < 2 * n; ++i)
+    if (st.masses[rows[i].block].moves) order.push_back(i);
+  std::sort(order.begin(), order.end(), [&](int x, int y) {
+    return rows[x].block != rows[y].block ? rows[x].block < rows[y].block : x < y;
+  });
   Eigen::MatrixXd A = Eigen::MatrixXd::Zero(n, n);
-  for (int i = 0; i < 2 * n; ++i) {
-    const BlockMass& mass = st.masses[rows[i].block];
-    if (!mass.moves) continue;
-    const Eigen::Vector3d& r = rows[i].row;
-    const Eigen::Vector3d w(mass.inverse_mass * r[0], mass.inverse_mass * r[1], mass.inverse_inertia * r[2]);
-    for (int j = 0; j < 2 * n; ++j)
-      if (rows[j].block == rows[i].block) A(i / 2, j / 2) += w.dot(rows[j].row);
+  for (size_t first = 0; first < order.size();) {
+    size_t last = first;
+    while (last < order.size() && rows[order[last]].block == rows[order[first]].block) ++last;
+    const BlockMass& mass = st.masses[rows[order[first]].block];
+    for (size_t x = first; x < last; ++x) {
+      const int i = order[x];
+      const Eigen::Vector3d& r = rows[i].row;
+      const Eigen::Vector3d w(mass.inverse_mass * r[0], mass.inverse_mass * r[1], mass.inverse_inertia * r[2]);
+      for (size_t y = first; y < last; ++y) A(i / 2, order[y] / 2) += w.dot(rows[order[y]].row);
+    }
+    first = last;
   }
   return A;
 }

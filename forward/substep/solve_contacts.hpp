@@ -49,6 +49,7 @@ struct SweepState {
   std::vector<Vec3> free_velocity;  // per block: the substep's velocity before any contact impulse
   std::vector<Vec3> push_velocity;  // per block: this substep's push-out (control.split_impulses)
   std::vector<char> deep;  // per manifold: a point overlapped beyond its deep_overlap in a relax sweep of the step
+  std::vector<char> overlapping;  // per manifold: a point overlaps beyond the slop (push_out_overlaps' scratch)
   // Built when first needed in a step and kept for its substeps and its position correction
   // (the manifolds do not change within a step); reset with `deep` at the step's start.
   std::optional<BlockManifolds> of_block;
