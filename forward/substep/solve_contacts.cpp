@@ -19,42 +19,19 @@ constexpr long kColourParallelMinimum = 64;
 // left one thread waiting for the other.
 constexpr int kColourChunk = 32;
 
-// How far ahead in a colour's list the sweeps ask for a manifold's memory. A colour's
-// members lie scattered over the manifold array (each ~0.5 kB), which the hardware's stream
-// prefetcher does not follow.
-constexpr long kPrefetchAhead = 4;
-
-// Asks the cache for the lines of manifold m that a sweep reads: its header and both points'
-// impulses (ContactManifold lays them out first in each point).
-inline void prefetch_manifold(const ContactManifold* m) {
-  const char* base = reinterpret_cast<const char*>(m);
-  const char* point1 = reinterpret_cast<const char*>(&m->points[1]);
-  __builtin_prefetch(base);
-  __builtin_prefetch(base + 64);
-  __builtin_prefetch(base + 128);
-  __builtin_prefetch(point1);
-  __builtin_prefetch(point1 + 64);
-}
-
 // Runs body(k) for every manifold, colour by colour. Within a colour no two manifolds
 // share a moving block, so the order (and the thread count) does not change the numbers.
-// `manifolds` (may be null) is the array the ids index, prefetched ahead of the body.
 template <class Body>
-void for_each_coloured(const std::vector<std::vector<int>>& colours, Body&& body,
-                       const ContactManifold* manifolds = nullptr) {
+void for_each_coloured(const std::vector<std::vector<int>>& colours, Body&& body) {
   for (int c = 0; c < static_cast<int>(colours.size()); ++c) {
     const std::vector<int>& members = colours[c];
     const long n = static_cast<long>(members.size());
-    const auto visit = [&](long k) {
-      if (manifolds && k + kPrefetchAhead < n) prefetch_manifold(manifolds + members[k + kPrefetchAhead]);
-      body(members[k]);
-    };
     if (c == kSerialColour) {
-      for (long k = 0; k < n; ++k) visit(k);
+      for (long k = 0; k < n; ++k) body(members[k]);
       continue;
     }
 #pragma omp parallel for schedule(dynamic, kColourChunk) if (n >= kColourParallelMinimum)
-    for (long k = 0; k < n; ++k) visit(k);
+    for (long k = 0; k < n; ++k) body(members[k]);
   }
 }
 
@@ -82,7 +59,7 @@ void warm_start(const std::vector<ContactManifold>& manifolds, const std::vector
       apply_impulse(va, vb, st.masses[m.block_a], st.masses[m.block_b], p,
             p.impulse.normal * m.normal + p.impulse.tangent * m.tangent);
     }
-  }, manifolds.data());
+  });
 }
 
 namespace {
@@ -195,8 +172,7 @@ const BlockManifolds& block_manifolds(const std::vector<ContactManifold>& manifo
 void solve_contacts(std::vector<ContactManifold>& manifolds, const std::vector<std::vector<int>>& colours,
                     const SweepSettings& settings, SweepState& st) {
   const double inv_h = 1.0 / settings.h;
-  for_each_coloured(colours, [&](int k) { solve_manifold(manifolds[k], st.deep[k], settings, inv_h, st); },
-                    manifolds.data());
+  for_each_coloured(colours, [&](int k) { solve_manifold(manifolds[k], st.deep[k], settings, inv_h, st); });
 }
 
 void push_out_overlaps(std::vector<ContactManifold>& manifolds, const std::vector<std::vector<int>>& colours,
