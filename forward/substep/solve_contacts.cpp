@@ -182,7 +182,7 @@ void push_out_overlaps(std::vector<ContactManifold>& manifolds, const std::vecto
   // without a push-out impulse is skipped below): find them in one pass through the
   // manifolds in memory order, so the coloured sweep, which visits them out of order,
   // touches these few only. The moves do not change during the sweep; the answer is the
-  // same to the bit (section VII degraded's summary identical, docs/performance.md).
+  // same to the bit (section VII degraded's history identical, docs/performance.md).
   const long n = static_cast<long>(manifolds.size());
   st.overlapping.resize(n);
 #pragma omp parallel for schedule(static) if (n >= kParallelMinimum)
