@@ -58,4 +58,14 @@ inline double sliding_friction_force(const ContactManifold& m, const ContactPoin
   return m.friction * p.spring.normal_force;
 }
 
+// d_s0 of a point that starts (or goes on) sliding: its shear spring trails the slip by the
+// friction force over its stiffness, s N tan(phi) / k_s, so that should the point lock, the
+// spring takes over at the friction force instead of at zero (a sudden loss of resistance at
+// every stick feeds stick-slip vibration at short steps). One formula for the three places a
+// point slides: settling (settle_contacts.cpp), an impact (new_points.cpp), a step's end
+// (update_blocks.cpp).
+inline double sliding_shear_offset(const ContactManifold& m, const ContactPoint& p, double shear_penalty) {
+  return p.spring.slip_direction * sliding_friction_force(m, p) / shear_penalty;
+}
+
 }  // namespace ddafit

@@ -117,6 +117,7 @@ void run_implicit(const Scene& scene, BlockSystem& system, RunRecorder& recorder
     summary.message = out.str();
   };
 
+  std::vector<char> struck;  // per block: in an impact this step (resolve_impacts refills it)
   while (!recorder.finished(time) && !recorder.interrupted(time, system)) {
     {
       ScopedTimer timer(profile.find_contacts);
@@ -129,7 +130,6 @@ void run_implicit(const Scene& scene, BlockSystem& system, RunRecorder& recorder
     }
     {
       ScopedTimer timer(profile.update);
-      std::vector<char> struck;  // per block: in an impact this step
       if (resolve_impacts(ctx, control.step, struck) > 0)
         start_impact_slides(system, ctx.contacts, struck, control.step,
                             options.contact_tolerance_ratio * control.max_displacement,

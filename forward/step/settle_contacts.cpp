@@ -40,7 +40,7 @@ void load_springs(const BlockSystem& s, ContactSet& contacts, const StepParamete
       }
       c.state = ContactState::Sliding;
       break_bond(p);
-      c.shear_offset = c.slip_direction * m.friction * c.normal_force / step.shear_penalty;
+      c.shear_offset = sliding_shear_offset(m, p, step.shear_penalty);
     }
   }
 }

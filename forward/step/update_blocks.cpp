@@ -58,11 +58,7 @@ void update_blocks(ImplicitStepContext& ctx, double dt) {
       break_bond(p);
       if (c.state == ContactState::Sliding) {
         p.slip = std::abs(sliding_slip(c));  // seed Eq. 2
-        // The spring trails the slip by the friction force over its stiffness, so that
-        // should the point lock in the next step, its spring takes over at the friction
-        // force instead of at zero: a sudden loss of resistance at every stick feeds
-        // stick-slip vibration at short time steps.
-        c.shear_offset = c.slip_direction * sliding_friction_force(m, p) / shear_penalty;
+        c.shear_offset = sliding_shear_offset(m, p, shear_penalty);  // pre-loaded for a lock
       } else {
         c.shear_offset = 0.0;
       }
