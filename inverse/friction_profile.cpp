@@ -60,7 +60,8 @@ ProfileRange profile_range(const std::vector<ProfilePoint>& profile, double thre
 }
 
 BoundingFriction profile_friction(Objective& objective, const Study& study, const std::vector<double>& best,
-                                  int parameter, int points, bool reoptimize, int budget) {
+                                  int parameter, int points, bool reoptimize, int budget, const ProfileScore& score) {
+  const ProfileScore scored = score ? score : [&](const std::vector<double>& x) { return objective.evaluate(x); };
   BoundingFriction f;
   const Parameter& p = study.parameters.at(parameter);
   f.parameter = parameter;
@@ -93,10 +94,10 @@ BoundingFriction profile_friction(Objective& objective, const Study& study, cons
       pt.chi2 = r.chi2;
     } else {
       pt.values = x;
-      pt.chi2 = objective.evaluate(x).chi2;
+      pt.chi2 = scored(x).chi2;
     }
     pt.failed = pt.chi2 >= kFailedMisfit;
-    pt.chi2_observations = chi2_observations_only(study, objective.evaluate(pt.values));  // from the log: no run
+    pt.chi2_observations = chi2_observations_only(study, scored(pt.values));  // from the log: no run
     pt.mu = residual_friction(study, parameter, f.peak_angle, value);
     const auto at = std::lower_bound(f.profile.begin(), f.profile.end(), value,
                                      [](const ProfilePoint& a, double v) { return a.value < v; });

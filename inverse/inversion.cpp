@@ -90,7 +90,9 @@ InversionSummary run_inversion(const Study& given, const InversionOptions& optio
   const int scan = profiled >= 0 ? study.profile.points : 0;
   const long per_scan_point = study.profile.reoptimize ? std::max(1, budget / 2) : 1;
   const long fine = study.method.coarse_to_fine && study.method.fine_budget > 0 ? study.method.fine_budget : budget;
-  objective.set_planned(budget + static_cast<long>(starts.size() - 1) * fine + scan * per_scan_point);
+  const bool multi_fidelity = study.method.multi_fidelity;
+  objective.set_planned(multi_fidelity ? budget + 2 * scan + 2 * study.method.fine_runs
+                                       : budget + static_cast<long>(starts.size() - 1) * fine + scan * per_scan_point);
 
   std::vector<bool> free;
   for (const Parameter& p : study.parameters) free.push_back(!p.discrete());
@@ -113,10 +115,15 @@ InversionSummary run_inversion(const Study& given, const InversionOptions& optio
     if (study.method.coarse_to_fine || out.best_level < 0 ||
         out.levels.back().best.chi2 < out.levels[out.best_level].best.chi2)
       out.best_level = static_cast<int>(out.levels.size()) - 1;
+    // Multi-fidelity fits the coarse level alone; its fine runs come with the profile.
+    if (multi_fidelity) break;
   }
+  if (multi_fidelity && !out.levels.front().best.failed) run_multi_fidelity(objective, study, profiled, scan, out);
   LevelFit& best = out.levels[out.best_level];
 
-  if (profiled < 0) {
+  if (multi_fidelity) {
+    if (out.levels.front().best.failed) out.friction.why_not = "the coarse level's fit found no completed run";
+  } else if (profiled < 0) {
     out.friction.why_not = "no *.degradation_percent or *.roughness_angle parameter of an interface to profile";
   } else if (scan == 0) {
     out.friction.why_not = "profile.points is 0";
@@ -126,14 +133,19 @@ InversionSummary run_inversion(const Study& given, const InversionOptions& optio
   }
   // ddafit keeps the best point it saw: a profile point may beat the fit (the fit stops
   // within step_tolerance resolutions of the minimum, the scan may land closer).
+  // (Not under multi_fidelity: its profile points are coarse runs, corrected.)
   for (const ProfilePoint& pt : out.friction.profile) {
-    if (pt.failed || pt.chi2 >= best.best.chi2) continue;
+    if (multi_fidelity || pt.failed || pt.chi2 >= best.best.chi2) continue;
     best.best = objective.evaluate(pt.values);
     best.history.clear();
     out.friction.best_value = pt.value;
     out.friction.mu_best = pt.mu;
   }
-  if (!best.best.failed) out.covariance = covariance_at(objective, study, best.best.values, profiled);
+  if (multi_fidelity)
+    out.covariance.warnings.push_back(
+        "not computed under multi_fidelity: its differences would need fine runs per parameter; the profile bounds the friction");
+  else if (!best.best.failed)
+    out.covariance = covariance_at(objective, study, best.best.values, profiled);
 
   // The best fit's history for the velocity-distance curve: from this process, else the
   // cache, else one more forward run (counted apart, so resumed studies stay comparable).

@@ -13,6 +13,7 @@
 #include "inverse/fit.hpp"
 #include "inverse/forward_call.hpp"
 #include "inverse/model_spread.hpp"
+#include "inverse/multi_fidelity.hpp"
 #include "inverse/objective.hpp"
 #include "inverse/study.hpp"
 
@@ -75,6 +76,9 @@ struct BoundingFriction {
   bool reoptimized = false;  // others re-fitted at each scan point (else fixed at best)
   std::vector<ProfilePoint> profile;  // sorted by value
   ProfileRange delta1, delta4;
+  // Under method.levels multi_fidelity: the profile is the coarse level's runs corrected
+  // towards the fine level (InversionSummary::fidelity), not runs of the fine level.
+  bool corrected = false;
   // When observations carry a model_sigma: the same ranges with the observations' sigma
   // alone, read off the same runs (the bisection refines delta1/delta4's crossings; these
   // are interpolated between the profile's points, exactly so where chi2 is quadratic).
@@ -97,6 +101,7 @@ struct InversionSummary {
   std::vector<LevelFit> levels;
   int best_level = -1;
   BoundingFriction friction;
+  FidelityCorrection fidelity;  // method.levels multi_fidelity: the fine runs and the correction
   CovarianceReport covariance;
   long evaluations = 0, cached = 0, run = 0;  // distinct points; from the cache; run now
   int budget = 0;  // objective calls allowed per fit (the study's, or --budget)
@@ -138,8 +143,16 @@ std::vector<std::vector<double>> profile_points(const Study& study, int paramete
 // runs are skipped: they say nothing about the fit there.
 ProfileRange profile_range(const std::vector<ProfilePoint>& profile, double threshold);
 
+// How a profile scores a point: the objective's own run (the default), or a model of it
+// (multi_fidelity.hpp: the coarse run corrected towards the fine level).
+using ProfileScore = std::function<Evaluation(const std::vector<double>& values)>;
 BoundingFriction profile_friction(Objective& objective, const Study& study, const std::vector<double>& best,
-                                  int parameter, int points, bool reoptimize, int budget);
+                                  int parameter, int points, bool reoptimize, int budget,
+                                  const ProfileScore& score = {});
+// method.levels multi_fidelity after the coarse level's fit (out.levels[0]): the coarse
+// profile, the fine runs, the corrected profile; adds the fine level to out.levels and sets
+// out.friction and out.fidelity (multi_fidelity.cpp).
+void run_multi_fidelity(Objective& objective, const Study& study, int profiled, int scan, InversionSummary& out);
 CovarianceReport covariance_at(Objective& objective, const Study& study, const std::vector<double>& best,
                                int profiled);
 

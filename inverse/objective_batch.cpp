@@ -32,6 +32,15 @@ std::vector<Evaluation> Objective::evaluate_batch(const std::vector<std::vector<
     std::deque<Finished> queue;
     std::mutex mutex;
     std::condition_variable ready;
+    // One run alone is made on the calling thread, with the process's whole thread budget
+    // (a worker's is the budget over the jobs: a lone section VII run on one thread of two
+    // would take half again as long).
+    if (todo.size() == 1) {
+      const auto t0 = std::chrono::steady_clock::now();
+      SimulationResult run = scene_.run(todo[0], forward_);
+      done(0, std::move(run), std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+      return;
+    }
     std::atomic<size_t> next{0};
     const auto work = [&] {
       if (on_worker_start) on_worker_start();

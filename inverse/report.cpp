@@ -46,6 +46,38 @@ json range_json(const ProfileRange& r) {
           {"mu_high", r.mu_high}, {"low_at_bound", r.low_at_bound}, {"high_at_bound", r.high_at_bound}};
 }
 
+json fidelity_json(const Study& study, const FidelityCorrection& c) {
+  json j = {{"coarse_level", c.coarse_level}, {"fine_level", c.fine_level}, {"rms_sigma", c.rms_sigma},
+            {"correction", json::array()}, {"runs", json::array()}};
+  for (size_t k = 0; k < study.observations.size() && k < c.offset.size(); ++k)
+    j["correction"].push_back({{"point", study.observations[k].point}, {"quantity", study.observations[k].quantity},
+                               {"offset", c.offset[k]}, {"slope", c.slope[k]}});
+  for (const FidelityRun& r : c.runs)
+    j["runs"].push_back({{"value", r.value}, {"fine_chi2", r.fine.chi2}, {"fine_failed", r.fine.failed},
+                         {"fine", r.fine.simulated}, {"coarse", r.coarse.simulated}, {"predicted", r.predicted}});
+  if (c.checked) j["check"] = {{"value", c.runs.back().value}, {"chi2", c.check_chi2}, {"predicted_chi2", c.check_predicted_chi2}};
+  return j;
+}
+
+std::string fidelity_markdown(const Study& study, const FidelityCorrection& c) {
+  const Parameter& p = study.parameters[c.parameter];
+  std::string md = fmt::format(
+      "\n## Multi-fidelity correction\n\nThe profile is the coarse level's ({:g}) runs corrected towards the fine "
+      "level ({:g}): y_fine = y_coarse + a + b {}, a and b by least squares through these fine runs (RMS of the fine "
+      "runs' residuals about the corrected model's: {:.3g} sigma).\n\n| {} | quantity | coarse | fine | corrected coarse |\n"
+      "|---|---|---|---|---|\n",
+      c.coarse_level, c.fine_level, p.name, c.rms_sigma, p.name);
+  for (const FidelityRun& r : c.runs)
+    for (size_t k = 0; k < study.observations.size(); ++k)
+      md += fmt::format("| {:.4g} | {} {} | {:.5g} | {:.5g} | {:.5g} |\n", r.value, study.observations[k].point,
+                        study.observations[k].quantity, r.coarse.simulated[k], r.fine.simulated[k],
+                        k < r.predicted.size() ? r.predicted[k] : NAN);
+  if (c.checked)
+    md += fmt::format("\nCheck run at the corrected optimum ({} = {:.4g}): chi2 {:.4g}, predicted {:.4g}.\n", p.name,
+                      c.runs.back().value, c.check_chi2, c.check_predicted_chi2);
+  return md;
+}
+
 json report_json(const Study& study, const InversionSummary& s) {
   json j;
   j["study"] = study.path;
@@ -80,7 +112,10 @@ json report_json(const Study& study, const InversionSummary& s) {
                            {"stop_reason", l.fit.stop_reason},
                            {"observations", observations_json(study, l.best)}});
   j["best_level"] = s.best_level;
-  j["level_strategy"] = study.method.coarse_to_fine ? "coarse_to_fine" : "independent";
+  j["level_strategy"] = study.method.multi_fidelity ? "multi_fidelity"
+                        : study.method.coarse_to_fine ? "coarse_to_fine"
+                                                      : "independent";
+  if (s.fidelity.used) j["multi_fidelity"] = fidelity_json(study, s.fidelity);
   if (s.best_level >= 0) {
     const LevelFit& b = s.levels[s.best_level];
     j["best"] = named_values(study, b.best.values, false);
@@ -96,7 +131,9 @@ json report_json(const Study& study, const InversionSummary& s) {
     bf["peak_friction_angle"] = f.peak_angle;
     bf["best_value"] = f.best_value;
     bf["mu_best"] = f.mu_best;
-    bf["profile_mode"] = f.reoptimized ? "other parameters re-optimised at each point" : "other parameters fixed at the best fit";
+    bf["profile_mode"] = f.reoptimized ? "other parameters re-optimised at each point"
+                         : f.corrected ? "other parameters fixed at the best fit; coarse runs corrected to the fine level"
+                                       : "other parameters fixed at the best fit";
     bf["profile"] = json::array();
     double chi2_min = INFINITY;
     for (const ProfilePoint& p : f.profile) chi2_min = std::min(chi2_min, p.chi2);
@@ -131,7 +168,10 @@ std::string markdown(const Study& study, const InversionSummary& s) {
                                study.path, study.scene_path, s.model_version, s.scene_hash);
   md += fmt::format("{} evaluations: {} forward runs made now, {} from the cache ({}); {:.1f} s wall, {:.1f} s in runs.\n\n",
                     s.evaluations, s.run, s.cached, s.cache_path, s.wall_seconds, s.run_seconds);
-  md += study.method.coarse_to_fine
+  md += study.method.multi_fidelity
+            ? "Multi-fidelity: fitted and profiled on the coarse level; a few fine runs correct the coarse model "
+              "(section \"Multi-fidelity correction\"); the finest level's best run is reported.\n\n"
+        : study.method.coarse_to_fine
             ? "Levels fitted coarse to fine: each starts from the last one's best point; the last (finest) is "
               "reported.\n\n"
             : "Levels fitted independently from the study's start; the lowest chi2 is reported.\n\n";
@@ -144,7 +184,7 @@ std::string markdown(const Study& study, const InversionSummary& s) {
     const LevelFit& f = s.levels[l];
     md += fmt::format("| {}{} | ", l + 1,
                       static_cast<int>(l) != s.best_level ? ""
-                      : study.method.coarse_to_fine       ? " (finest, reported)"
+                      : study.method.coarse_to_fine || study.method.multi_fidelity ? " (finest, reported)"
                                                           : " (best)");
     for (double v : f.best.values) md += fmt::format("{:.6g} | ", v);
     md += fmt::format("{:.4g} | {} | {} |\n", f.best.chi2, f.fit.evaluations, f.fit.stop_reason);
@@ -169,8 +209,9 @@ std::string markdown(const Study& study, const InversionSummary& s) {
     md += fmt::format("mu_b = tan(phi_p - i) on interface `{}` (phi_p = {:.4g} deg) with {} = {:.4g}: mu_b = {:.4f} "
                       "(phi_b = {:.2f} deg).\n\n",
                       f.interface, f.peak_angle, p.name, f.best_value, f.mu_best, std::atan(f.mu_best) * 180.0 / M_PI);
-    md += fmt::format("Profile of chi2 over {} ({} points, {}):\n\n", p.name, f.profile.size(),
-                      f.reoptimized ? "other parameters re-optimised at each point" : "other parameters fixed at the best fit");
+    md += fmt::format("Profile of chi2 over {} ({} points, {}{}):\n\n", p.name, f.profile.size(),
+                      f.reoptimized ? "other parameters re-optimised at each point" : "other parameters fixed at the best fit",
+                      f.corrected ? "; coarse runs corrected to the fine level" : "");
     for (const ProfileRange* r : {&f.delta1, &f.delta4})
       md += fmt::format("- Delta chi2 <= {:g}: {} in [{:.4g}{}, {:.4g}{}] -> mu_b in [{:.4f}, {:.4f}], phi_b in "
                         "[{:.2f}, {:.2f}] deg\n",
@@ -179,6 +220,7 @@ std::string markdown(const Study& study, const InversionSummary& s) {
                         std::atan(r->mu_high) * 180.0 / M_PI);
     md += "\nThe lowest mu_b compatible with the observations (Delta chi2 <= 4) is the bounding friction.\n";
   }
+  if (s.fidelity.used) md += fidelity_markdown(study, s.fidelity);
   const CovarianceReport& c = s.covariance;
   md += "\n## Linearised covariance (secondary diagnostic)\n\n";
   if (c.computed) {

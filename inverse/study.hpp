@@ -80,8 +80,15 @@ struct MethodOptions {
   //   coarse_to_fine  in the order listed (coarse first), each level starting from the last
   //                   one's best point with `fine_budget` runs; the last (finest) level is
   //                   reported. Needs exactly one parameter with levels.
+  //   multi_fidelity  fit and profile on the first (coarse) level; `fine_runs` runs of the
+  //                   last (fine) level correct the coarse model, observable by observable,
+  //                   by a + b p along the profiled parameter p (multi_fidelity.hpp); the
+  //                   profile and the bounding friction are the corrected model's. Needs
+  //                   exactly one parameter with two levels, and a profile.
   bool coarse_to_fine = false;
+  bool multi_fidelity = false;
   int fine_budget = 0;  // runs per level after the first under coarse_to_fine; 0 = budget
+  int fine_runs = 3;    // multi_fidelity: runs of the fine level (two spread, one at the optimum)
 };
 
 // The profile behind the bounding friction: chi^2 along the degradation parameter.

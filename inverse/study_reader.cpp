@@ -68,6 +68,16 @@ class StudyReader : public io::YamlChecks {
         std::count_if(s.parameters.begin(), s.parameters.end(), [](const Parameter& q) { return q.discrete(); }) != 1)
       fail("method.levels", "coarse_to_fine needs exactly one parameter with levels (coarse first, e.g. block sizes)");
     if (const YAML::Node n = root["profile"]) s.profile = profile(n, s.parameters);
+    if (s.method.multi_fidelity) {
+      const auto leveled = std::count_if(s.parameters.begin(), s.parameters.end(), [](const Parameter& q) { return q.discrete(); });
+      const auto two = std::count_if(s.parameters.begin(), s.parameters.end(), [](const Parameter& q) { return q.levels.size() == 2; });
+      if (leveled != 1 || two != 1)
+        fail("method.levels", "multi_fidelity needs exactly one parameter with two levels (coarse, fine; e.g. block sizes)");
+      if (profile_parameter(s) < 0)
+        fail("method.levels", "multi_fidelity corrects the profile: give a *.degradation_percent or *.roughness_angle parameter");
+      if (s.profile.points < 2) fail("profile.points", "multi_fidelity needs a profile of at least 2 points");
+      if (s.profile.reoptimize) fail("profile.reoptimize", "not with levels: multi_fidelity (the correction is along one parameter)");
+    }
     if (const YAML::Node n = root["ensemble"]) {
       const double k = number(n, "ensemble");
       if (!(k >= 2 && k <= 1000 && k == std::floor(k)))
@@ -241,7 +251,8 @@ class StudyReader : public io::YamlChecks {
 
   MethodOptions method(const YAML::Node& n) const {
     check_keys(n, "method",
-               {"optimizer", "algorithm", "budget", "step_tolerance", "chi2_tolerance", "levels", "fine_budget"});
+               {"optimizer", "algorithm", "budget", "step_tolerance", "chi2_tolerance", "levels", "fine_budget",
+                "fine_runs"});
     MethodOptions m;
     if (const YAML::Node o = n["optimizer"]) {
       const std::string name = text(o, "method.optimizer");
@@ -272,11 +283,18 @@ class StudyReader : public io::YamlChecks {
     if (const YAML::Node l = n["levels"]) {
       const std::string how = text(l, "method.levels");
       if (how == "coarse_to_fine") m.coarse_to_fine = true;
-      else if (how != "independent") fail("method.levels", "unknown strategy '" + how + "'; known: independent, coarse_to_fine");
+      else if (how == "multi_fidelity") m.multi_fidelity = true;
+      else if (how != "independent")
+        fail("method.levels", "unknown strategy '" + how + "'; known: independent, coarse_to_fine, multi_fidelity");
     }
     if (const YAML::Node b = n["fine_budget"]) {
       if (!m.coarse_to_fine) fail("method.fine_budget", "only with levels: coarse_to_fine");
       m.fine_budget = runs(b, "method.fine_budget");
+    }
+    if (const YAML::Node b = n["fine_runs"]) {
+      if (!m.multi_fidelity) fail("method.fine_runs", "only with levels: multi_fidelity");
+      m.fine_runs = runs(b, "method.fine_runs");
+      if (m.fine_runs < 2) fail("method.fine_runs", "is " + b.Scalar() + "; multi_fidelity needs at least 2 (a correction a + b p)");
     }
     return m;
   }

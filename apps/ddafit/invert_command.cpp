@@ -58,6 +58,14 @@ void print_plan(const inverse::Study& study, int budget, const std::string& out)
                            study.method.optimizer == inverse::Optimizer::Ceres ? "levenberg_marquardt"
                                                                                : study.method.algorithm,
                            budget, levels, profiled >= 0 ? study.parameters[profiled].name : "(none)", scan);
+  if (study.method.multi_fidelity) {
+    // The coarse level's fit and profiles (the bisections come on top), and the fine runs.
+    std::cout << fmt::format("multi_fidelity: fit and profile on the first level, {} runs of the last correct it\n",
+                             study.method.fine_runs);
+    std::cout << fmt::format("about {} coarse evaluations and {} fine; cache {}/evaluations.sqlite\n",
+                             budget + 2 * scan, study.method.fine_runs, out);
+    return;
+  }
   std::cout << fmt::format("at most {} evaluations; cache {}/evaluations.sqlite\n", levels * budget + scan * per_point,
                            out);
 }
