@@ -97,5 +97,31 @@ TEST(SledLevel, InvertExploresOnTheSledAndReportsTheFinestLevel) {
   std::cout << "[measured] slab, levels [sled, 20]: " << j.at("levels").dump().substr(0, 400) << "\n";
 }
 
+TEST(SledLevel, MultiFidelityCorrectsTheSledWithRunsOfTheFinerLevel) {
+  // levels: multi_fidelity with [sled, 20]: the sled is fitted and profiled, three runs of
+  // the DDA slab (20 m blocks) correct it, and the report's level 2 is the best of them.
+  std::string text = study_text("[sled, 20]");
+  text.replace(text.find("levels: coarse_to_fine, fine_budget: 3"), 38, "levels: multi_fidelity");
+  text += "profile: {points: 5}\n";
+  const std::string path = ddafit_test::write_file("sled_level_multi_fidelity", "study.yaml", text).string();
+  const std::string out = std::string(DDAFIT_TEST_TMP) + "/sled_level_multi_fidelity/out";
+  std::filesystem::remove_all(out);
+  const ddafit_test::CommandResult r =
+      ddafit_test::ddafit("invert " + path + " --threads 1 --jobs 2 --quiet --out " + out, "sled_level_multi_fidelity");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const nlohmann::json j = nlohmann::json::parse(ddafit_test::slurp(out + "/report.json"));
+  EXPECT_EQ(j.at("level_strategy"), "multi_fidelity");
+  ASSERT_EQ(j.at("levels").size(), 2u);
+  EXPECT_EQ(j.at("levels")[1].at("level").at("block_size"), 20.0);
+  const nlohmann::json& mf = j.at("multi_fidelity");
+  EXPECT_EQ(mf.at("coarse_level"), kSledLevel);
+  ASSERT_GE(mf.at("runs").size(), 2u);
+  ASSERT_LE(mf.at("runs").size(), 3u);
+  for (const nlohmann::json& run : mf.at("runs")) EXPECT_FALSE(run.at("fine_failed").get<bool>());
+  EXPECT_TRUE(j.at("bounding_friction").at("available").get<bool>());
+  std::cout << "[measured] slab, multi_fidelity [sled, 20]: " << mf.at("correction").dump() << ", RMS "
+            << mf.at("rms_sigma") << " sigma\n";
+}
+
 }  // namespace
 }  // namespace ddafit::inverse
