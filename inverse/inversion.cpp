@@ -143,7 +143,8 @@ InversionSummary run_inversion(const Study& given, const InversionOptions& optio
   }
   if (multi_fidelity)
     out.covariance.warnings.push_back(
-        "not computed under multi_fidelity: its differences would need fine runs per parameter; the profile bounds the friction");
+        "not computed under multi_fidelity: its differences would need fine runs per parameter; the profile bounds "
+        "the friction");
   else if (!best.best.failed)
     out.covariance = covariance_at(objective, study, best.best.values, profiled);
 

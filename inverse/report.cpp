@@ -55,7 +55,8 @@ json fidelity_json(const Study& study, const FidelityCorrection& c) {
   for (const FidelityRun& r : c.runs)
     j["runs"].push_back({{"value", r.value}, {"fine_chi2", r.fine.chi2}, {"fine_failed", r.fine.failed},
                          {"fine", r.fine.simulated}, {"coarse", r.coarse.simulated}, {"predicted", r.predicted}});
-  if (c.checked) j["check"] = {{"value", c.runs.back().value}, {"chi2", c.check_chi2}, {"predicted_chi2", c.check_predicted_chi2}};
+  if (c.checked)
+    j["check"] = {{"value", c.runs.back().value}, {"chi2", c.check_chi2}, {"predicted_chi2", c.check_predicted_chi2}};
   return j;
 }
 

@@ -69,8 +69,9 @@ class StudyReader : public io::YamlChecks {
       fail("method.levels", "coarse_to_fine needs exactly one parameter with levels (coarse first, e.g. block sizes)");
     if (const YAML::Node n = root["profile"]) s.profile = profile(n, s.parameters);
     if (s.method.multi_fidelity) {
-      const auto leveled = std::count_if(s.parameters.begin(), s.parameters.end(), [](const Parameter& q) { return q.discrete(); });
-      const auto two = std::count_if(s.parameters.begin(), s.parameters.end(), [](const Parameter& q) { return q.levels.size() == 2; });
+      const auto& ps = s.parameters;
+      const auto leveled = std::count_if(ps.begin(), ps.end(), [](const Parameter& q) { return q.discrete(); });
+      const auto two = std::count_if(ps.begin(), ps.end(), [](const Parameter& q) { return q.levels.size() == 2; });
       if (leveled != 1 || two != 1)
         fail("method.levels", "multi_fidelity needs exactly one parameter with two levels (coarse, fine; e.g. block sizes)");
       if (profile_parameter(s) < 0)
