@@ -151,7 +151,7 @@ BoundingFriction profile_friction(Objective& objective, const Study& study, cons
                                   const ProfileScore& score = {});
 // method.levels multi_fidelity after the coarse level's fit (out.levels[0]): the coarse
 // profile, the fine runs, the corrected profile; adds the fine level to out.levels and sets
-// out.friction and out.fidelity (multi_fidelity.cpp).
+// out.friction and out.fidelity (fidelity_levels.cpp).
 void run_multi_fidelity(Objective& objective, const Study& study, int profiled, int scan, InversionSummary& out);
 CovarianceReport covariance_at(Objective& objective, const Study& study, const std::vector<double>& best,
                                int profiled);
