@@ -40,16 +40,14 @@ void run_pairs(Objective& objective, const std::vector<double>& coarse_best, con
   for (size_t i = 0; i < values.size(); ++i) c.runs.push_back({values[i], b[i], a[i], {}});
 }
 
-// The corrected model's optimum on the profiled parameter's resolution grid: from the
-// profile's lowest point, a parabola through it and its neighbours, then steps of one
-// resolution downhill (each a coarse run: the cheap level). The profile's own "best" is the
-// coarse fit's point, which is not the corrected model's.
-double corrected_optimum(const BoundingFriction& f, const Parameter& p, const std::vector<double>& best, int profiled,
-                         const ProfileScore& score) {
+// A start for the corrected model's optimum: the profile's lowest point, moved to the vertex
+// of the parabola through it and its neighbours when that lies between them. (The profile's
+// own "best" is the coarse fit's point, which is not the corrected model's.)
+double parabola_start(const BoundingFriction& f, double fallback) {
   std::vector<const ProfilePoint*> good;
   for (const ProfilePoint& q : f.profile)
     if (!q.failed) good.push_back(&q);
-  if (good.empty()) return best[profiled];
+  if (good.empty()) return fallback;
   size_t m = 0;
   for (size_t k = 1; k < good.size(); ++k)
     if (good[k]->chi2 < good[m]->chi2) m = k;
@@ -64,12 +62,19 @@ double corrected_optimum(const BoundingFriction& f, const Parameter& p, const st
       if (vertex > x0 && vertex < x2) at = vertex;
     }
   }
+  return at;
+}
+
+// From `start`, steps of one resolution downhill on the corrected model to a minimum on the
+// resolution grid (each step a coarse run: the cheap level).
+double walk_down(double start, const Parameter& p, const std::vector<double>& best, int profiled,
+                 const ProfileScore& score) {
   const auto chi2_at = [&](double v) {
     std::vector<double> x = best;
     x[profiled] = v;
     return score(x).chi2;
   };
-  at = on_grid(p, at);
+  double at = on_grid(p, start);
   double here = chi2_at(at);
   for (int step = 0; step < 1000; ++step) {
     const double down = on_grid(p, at - p.resolution), up = on_grid(p, at + p.resolution);
@@ -118,8 +123,7 @@ void run_multi_fidelity(Objective& objective, const Study& study, int profiled, 
   const int n = study.method.fine_runs - 1;
   for (int i = 0; i < n; ++i) {
     const double v = on_grid(p, n == 1 ? plain.best_value : lo + (hi - lo) * i / (n - 1));
-    if (!has_run(c, v, p.resolution) &&
-        std::none_of(spread.begin(), spread.end(), [&](double s) { return std::abs(s - v) < 0.5 * p.resolution; }))
+    if (std::none_of(spread.begin(), spread.end(), [&](double s) { return std::abs(s - v) < 0.5 * p.resolution; }))
       spread.push_back(v);
   }
   log(fmt::format("multi_fidelity: coarse fit's best {} = {:.4g}, coarse Delta chi2 <= 4 in [{:.4g}, {:.4g}]; fine runs at "
@@ -128,13 +132,12 @@ void run_multi_fidelity(Objective& objective, const Study& study, int profiled, 
   run_pairs(objective, best, spread, c);
   fit_correction(study, c);
 
-  // 3. The corrected profile, then one fine run at its optimum (the check), and the profile
-  // again with that run in the correction.
-  // The profile is centred (its "best" point) on the corrected optimum each time.
+  // 3. The corrected model's optimum (from its profile), one fine run there (the check), the
+  // optimum again with that run in the correction, and the profile centred on it (its "best").
   const ProfileScore score = [&](const std::vector<double>& x) { return corrected(study, c, objective.evaluate(x)); };
   std::vector<double> centre = best;
   BoundingFriction f = profile_friction(objective, study, centre, profiled, scan, false, 1, score);
-  centre[profiled] = corrected_optimum(f, p, best, profiled, score);
+  centre[profiled] = walk_down(parabola_start(f, best[profiled]), p, best, profiled, score);
   if (!has_run(c, centre[profiled], p.resolution)) {
     c.check_predicted_chi2 = score(centre).chi2;
     run_pairs(objective, best, {centre[profiled]}, c);
@@ -143,8 +146,7 @@ void run_multi_fidelity(Objective& objective, const Study& study, int profiled, 
     log(fmt::format("multi_fidelity: check run at {} = {:.4g}: chi2 {:.4g} against {:.4g} predicted", p.name,
                     centre[profiled], c.check_chi2, c.check_predicted_chi2));
     fit_correction(study, c);
-    f = profile_friction(objective, study, centre, profiled, scan, false, 1, score);
-    centre[profiled] = corrected_optimum(f, p, best, profiled, score);
+    centre[profiled] = walk_down(centre[profiled], p, best, profiled, score);
   }
   f = profile_friction(objective, study, centre, profiled, scan, false, 1, score);
   f.corrected = true;
