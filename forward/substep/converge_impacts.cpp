@@ -31,6 +31,11 @@ constexpr double kGrowShare = 0.3;
 // inelastic solve never adds energy; the held friction and rounding may add a little, measured
 // at up to 0.3 % on Vajont section I), plus half the group's mass times closing^2.
 constexpr double kEnergyShare = 1e-2;
+// After an impact, its group's blocks are held for ImpactConvergence::settle_substeps to this
+// share of the trigger's speeds (0.3 |g| h closing at the default margins), and a group they
+// start is grown at the same share: grown at the impact's margins, a settling group took in the
+// middle of a stack of ten alone and left the blocks above it to the sweeps.
+constexpr double kSettleShare = 0.03;
 
 // A point's complementarity residual (Signorini: impulse >= its floor, residual >= 0, one of
 // them at its bound): its normal velocity less the closing its gap allows within the substep
@@ -276,8 +281,19 @@ ImpactCounts converge_impacts(std::vector<ContactManifold>& manifolds, const Swe
   ImpactCounts counts;
   const long n = static_cast<long>(manifolds.size());
   std::vector<char> open(n, 0);
+  const int blocks_n = static_cast<int>(st.velocity.size());
+  if (static_cast<int>(st.settling_substeps.size()) != blocks_n) st.settling_substeps.assign(blocks_n, 0);
+  ImpactConvergence tight = settings;
+  tight.closing *= kSettleShare;
+  tight.spent *= kSettleShare;
+  const auto settling = [&](const ContactManifold& m) {
+    return st.settling_substeps[m.block_a] > 0 || st.settling_substeps[m.block_b] > 0;
+  };
 #pragma omp parallel for schedule(static) if (n >= kParallelMinimum)
-  for (long k = 0; k < n; ++k) open[k] = unresolved(manifolds[k], st, relax.h, settings);
+  for (long k = 0; k < n; ++k)
+    open[k] = unresolved(manifolds[k], st, relax.h, settings) ||
+              (settling(manifolds[k]) && unresolved(manifolds[k], st, relax.h, tight));
+  for (int& left : st.settling_substeps) left = std::max(left - 1, 0);
   if (std::find(open.begin(), open.end(), 1) == open.end()) return counts;
   // Impacts apart are solved apart. A group is an open manifold's moving blocks with all their
   // manifolds; two groups that share a manifold are one (solved one after the other, the second
@@ -311,7 +327,19 @@ ImpactCounts converge_impacts(std::vector<ContactManifold>& manifolds, const Swe
     std::vector<int> list;
     for (; end < seeds.size() && seeds[end].first == seeds[start].first; ++end)
       take_in(seeds[end].second, manifolds, of_block, st, involved, listed, list);
-    if (!list.empty()) converge_group(manifolds, of_block, relax, settings, st, involved, listed, list, counts);
+    if (!list.empty()) {
+      // A group seeded by a point beyond the impact margins is an impact: its blocks settle
+      // for the next settle_substeps. A group seeded only by settling blocks is solved and
+      // grown at the tight margins and does not extend their time.
+      bool impact = false;
+      for (size_t i = start; i < end; ++i) impact |= unresolved(manifolds[seeds[i].second], st, relax.h, settings);
+      const long solved = counts.solved;
+      converge_group(manifolds, of_block, relax, impact ? settings : tight, st, involved, listed, list, counts);
+      if (impact && counts.solved > solved)
+        for (const int k : list)
+          for (const int b : {manifolds[k].block_a, manifolds[k].block_b})
+            if (st.masses[b].moves) st.settling_substeps[b] = settings.settle_substeps;
+    }
     start = end;
   }
   return counts;

@@ -30,6 +30,15 @@ struct ImpactConvergence {
   // Rounds of taking in the neighbouring manifolds a solve left open: a stack of ten needed
   // more than four (at four a dropped block came back at 19 %).
   int max_rounds = 8;
+  // Substeps after an impact in which its group's blocks are held to a tighter margin (a share
+  // of `closing` and `spent`, converge_impacts.cpp): two steps' worth (run_substep.cpp). After a
+  // direct solve the warm start brings the impact's impulses back, and the two sweeps leave every
+  // contact of a tall stack just under the trigger while the errors add up the column: a block
+  // dropped on a stack of ten came back at 12.3 % of its speed; held for one step, 8.5 % (on
+  // fifteen), for two 3.1 % (tests/test_impact_rebound.cpp). Handing on, instead, the impulses
+  // that hold the group at rest (a second complementarity solve) gave 2.6 % but doubled section
+  // VII's wall, and a resting solve cut short created energy there.
+  int settle_substeps = 0;
 };
 
 struct ImpactCounts {

@@ -83,6 +83,9 @@ constexpr int kDeepIterations = 16;
 constexpr double kImpactClosingRatio = 10.0;
 constexpr double kImpactSpentRatio = 3.0;
 constexpr double kImpactSpentRestShare = 0.2;
+// Steps after an impact in which its group's blocks are held to the tighter margin
+// (ImpactConvergence::settle_substeps), model revision 2026-11-28.6.
+constexpr int kImpactSettleSteps = 2;
 
 
 // The deepest overlap at the end of the step, relative to the smaller block of its pair;
@@ -161,6 +164,7 @@ void run_one_substep(SubstepContext& w, const SweepSettings& sweep, const Vec2& 
     ImpactConvergence impacts;
     impacts.closing = kImpactClosingRatio * scale;
     impacts.spent = std::max(kImpactSpentRatio * scale, kImpactSpentRestShare * w.scene.rest_speed);
+    impacts.settle_substeps = kImpactSettleSteps * w.options.substeps;
     const ImpactCounts counts =
         w.settling ? ImpactCounts{} : converge_impacts(w.contacts.manifolds, relax, impacts, w.state);
     w.report.impact_groups += counts.solved;

@@ -53,6 +53,9 @@ struct SweepState {
   // Built when first needed in a step and kept for its substeps and its position correction
   // (the manifolds do not change within a step); reset with `deep` at the step's start.
   std::optional<BlockManifolds> of_block;
+  // Per block: substeps left in which its manifolds are held to the direct solve's tolerance
+  // after an impact group took it in (converge_impacts.hpp).
+  std::vector<int> settling_substeps;
 };
 
 // st.of_block, built from `manifolds` if this step has not built it yet.
