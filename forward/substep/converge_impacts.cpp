@@ -330,7 +330,8 @@ ImpactCounts converge_impacts(std::vector<ContactManifold>& manifolds, const Swe
     if (!list.empty()) {
       // A group seeded by a point beyond the impact margins is an impact: its blocks settle
       // for the next settle_substeps. A group seeded only by settling blocks is solved and
-      // grown at the tight margins and does not extend their time.
+      // grown at the tight margins and does not extend their time. Judged when the group is
+      // reached: an earlier group's growth may have taken in and solved a seed already.
       bool impact = false;
       for (size_t i = start; i < end; ++i) impact |= unresolved(manifolds[seeds[i].second], st, relax.h, settings);
       const long solved = counts.solved;
