@@ -53,8 +53,9 @@ struct SweepState {
   // Built when first needed in a step and kept for its substeps and its position correction
   // (the manifolds do not change within a step); reset with `deep` at the step's start.
   std::optional<BlockManifolds> of_block;
-  // Per block: substeps left in which its manifolds are held to the direct solve's tolerance
-  // after an impact group took it in (converge_impacts.hpp).
+  // Per block: substeps left in which its manifolds are held to a share of the impact margins
+  // after a group solved for an impact took it in (converge_impacts.hpp, kSettleShare). Kept
+  // from step to step: a block's index does not change within a run.
   std::vector<int> settling_substeps;
 };
 
