@@ -6,7 +6,9 @@
 // (tests/test_impact_depth.cpp: 83 % of the impact speed from the substep solver, 45 % from
 // the implicit one until model revision 2026-11-27.8); swept here over the other shapes the
 // same event takes in a slide: a block dropped onto a stack, a block driven into a row free to
-// move, and slow impacts into the walled row, with 3, 6 and 10 struck blocks (stacks of 15 too).
+// move, and slow impacts into the walled row and onto stacks, with 3, 6 and 10 struck blocks
+// (stacks of 15 too). One sweep is a known defect (disabled, docs/verification.md, "Slow drops
+// onto stacks"): the substep solver's slow drops onto stacks.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -224,6 +226,23 @@ TEST(ImpactRebound, ABlockDroppedOntoAStackDoesNotBounceOffSubstep) {
 // still come back (49 % of 5 m/s for a 1 m block onto twenty 0.25 m blocks; 55 % at .28.5).
 TEST(ImpactRebound, ABlockDroppedOntoAStackOfTenDoesNotBounceOffSubstep) {
   expect_inelastic(Shape::Stack, Integrator::Substep, {2.0, 5.0, 10.0}, 48, {10, 15});
+}
+
+// Slow drops: 0.5 and 1 m/s, one and a half and three times the |g| dt of a 10 ms step, onto
+// stacks of 3, 6 and 10 (48 runs per solver), where a step begins to take an approach as resting
+// contact. The implicit solver: 14.9 % of 0.5 m/s worst (bound 10 % + |g| dt / v = 29.6 %).
+TEST(ImpactRebound, ASlowBlockDroppedOntoAStackDoesNotBounceOffImplicit) {
+  expect_inelastic(Shape::Stack, Integrator::Implicit, {0.5, 1.0}, 48);
+}
+
+// KNOWN DEFECT (found 2026-11-28 widening the stacks' sweep; the same at revisions .28.5 and .28.6):
+// the substep solver throws a slow drop back at up to 47 % of 0.5 m/s (a 4 m block onto three
+// 4 x 1 m blocks, 10 ms x 3; bound 24.6 %) and 25 % of 1 m/s (bound 14.8 %). Traced on the 1 m/s
+// drop: the two sweeps spread the impact down the stack and leave every contact closing under the
+// group trigger (10 |g| h = 0.33 m/s: the stack sinks into the floor at 0.19-0.32 m/s after the
+// first step, no group started), and the warm start throws it back the next step.
+TEST(ImpactRebound, DISABLED_ASlowBlockDroppedOntoAStackDoesNotBounceOffSubstep) {
+  expect_inelastic(Shape::Stack, Integrator::Substep, {0.5, 1.0}, 48);
 }
 
 // A block driven into a row that nothing holds: the row is pushed along (its tall blocks
