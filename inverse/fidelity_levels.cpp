@@ -86,9 +86,12 @@ double walk_down(double start, const Parameter& p, const std::vector<double>& be
   return at;
 }
 
+// Two values of the profiled parameter name the same grid point.
+bool same_point(double a, double b, double resolution) { return std::abs(a - b) < 0.5 * resolution; }
+
 bool has_run(const FidelityCorrection& c, double v, double resolution) {
   return std::any_of(c.runs.begin(), c.runs.end(),
-                     [&](const FidelityRun& r) { return std::abs(r.value - v) < 0.5 * resolution; });
+                     [&](const FidelityRun& r) { return same_point(r.value, v, resolution); });
 }
 
 }  // namespace
@@ -123,7 +126,7 @@ void run_multi_fidelity(Objective& objective, const Study& study, int profiled, 
   const int n = study.method.fine_runs - 1;
   for (int i = 0; i < n; ++i) {
     const double v = on_grid(p, n == 1 ? plain.best_value : lo + (hi - lo) * i / (n - 1));
-    if (std::none_of(spread.begin(), spread.end(), [&](double s) { return std::abs(s - v) < 0.5 * p.resolution; }))
+    if (std::none_of(spread.begin(), spread.end(), [&](double s) { return same_point(s, v, p.resolution); }))
       spread.push_back(v);
   }
   log(fmt::format("multi_fidelity: coarse fit's best {} = {:.4g}, coarse Delta chi2 <= 4 in [{:.4g}, {:.4g}]; fine runs at "
