@@ -228,21 +228,40 @@ TEST(ImpactRebound, ABlockDroppedOntoAStackOfTenDoesNotBounceOffSubstep) {
   expect_inelastic(Shape::Stack, Integrator::Substep, {2.0, 5.0, 10.0}, 48, {10, 15});
 }
 
-// Slow drops: 0.5 and 1 m/s, one and a half and three times the |g| dt of a 10 ms step, onto
-// stacks of 3, 6 and 10 (48 runs per solver), where a step begins to take an approach as resting
-// contact. The implicit solver: 14.9 % of 0.5 m/s worst (bound 10 % + |g| dt / v = 29.6 %).
+// Slow drops: 0.4-1.5 m/s, from just above the speed a 10 ms step of three substeps starts an
+// impact group at (10 |g| h = 0.33 m/s) to 1.5 times the |g| dt of a 10 ms step, onto stacks of
+// 2-15 blocks, friction 15, 30 and 45 deg (600 runs per solver), where a step begins to take an
+// approach as resting contact. The implicit solver: 22.4 % of 0.4 m/s worst (a 1 m block onto
+// ten 0.25 m blocks at 45 deg, bound 10 % + |g| dt / v = 34.5 %).
 TEST(ImpactRebound, ASlowBlockDroppedOntoAStackDoesNotBounceOffImplicit) {
-  expect_inelastic(Shape::Stack, Integrator::Implicit, {0.5, 1.0}, 48);
+  expect_inelastic(Shape::Stack, Integrator::Implicit, {0.4, 0.5, 0.7, 1.0, 1.5}, 600, {2, 3, 6, 10, 15},
+                   {15.0, 30.0, 45.0});
 }
 
-// KNOWN DEFECT (found 2026-11-28 widening the stacks' sweep; the same at revisions .28.5 and .28.6):
-// the substep solver throws a slow drop back at up to 47 % of 0.5 m/s (a 4 m block onto three
-// 4 x 1 m blocks, 10 ms x 3; bound 24.6 %) and 25 % of 1 m/s (bound 14.8 %). Traced on the 1 m/s
-// drop: the two sweeps spread the impact down the stack and leave every contact closing under the
-// group trigger (10 |g| h = 0.33 m/s: the stack sinks into the floor at 0.19-0.32 m/s after the
-// first step, no group started), and the warm start throws it back the next step.
-TEST(ImpactRebound, DISABLED_ASlowBlockDroppedOntoAStackDoesNotBounceOffSubstep) {
-  expect_inelastic(Shape::Stack, Integrator::Substep, {0.5, 1.0}, 48);
+// The substep solver, from 0.5 m/s onto stacks of 2-10 (384 runs): 18.7 % worst (a 4 m block at
+// 0.5 m/s onto six 4 m blocks, 15 deg; bound 5 % + |g| dt / v = 24.6 %). Until model revision
+// 2026-11-28.7 it threw slow drops back at up to 85 % of their speed (a 1 m block at 0.5 m/s onto
+// ten 0.25 m blocks, 45 deg), and 47 % in the first, narrower sweep of this test (a 4 m block onto
+// three 4 x 1 m blocks at 30 deg, bound 24.6 %): the two sweeps took the blow down the column and
+// left every joint closing under the group trigger, so no group started, and the warm start of
+// the next substeps re-applied the impulses that had stopped the striker to blocks at rest. Since
+// .28.7 a block struck through a joint that carries weight is held to the settling margins
+// (forward/substep/converge_impacts.cpp, mark_struck).
+TEST(ImpactRebound, ASlowBlockDroppedOntoAStackDoesNotBounceOffSubstep) {
+  expect_inelastic(Shape::Stack, Integrator::Substep, {0.5, 0.7, 1.0, 1.5}, 384, {2, 3, 6, 10}, {15.0, 30.0, 45.0});
+}
+
+// KNOWN DEFECT (found 2026-11-28 widening the sweep above to the implicit test's 600 runs): 2 of
+// the 600 come back beyond the bound at .28.7: a 4 m block at 0.4 m/s onto six 1 m blocks at
+// 15 deg (39 %, bound 29.5 %) and a 1 m block at 0.5 m/s onto fifteen 0.25 m blocks at 45 deg
+// (32 %, bound 24.6 %). At 0.4 m/s the speculative contact slows the striker to the 1 mm gap's
+// allowance in the first substep, and the next one sees it close at about the group trigger
+// (0.33 m/s), so whether the column is held depends on rounding; with the trigger for a struck
+// block lowered to half or a third, those pass and other stacks of fifteen at 0.4 m/s fail
+// (31-33 %). Stacks of fifteen and taller are the columns of docs/verification.md.
+TEST(ImpactRebound, DISABLED_ASlowBlockDroppedOntoATallStackDoesNotBounceOffSubstep) {
+  expect_inelastic(Shape::Stack, Integrator::Substep, {0.4, 0.5, 0.7, 1.0, 1.5}, 600, {2, 3, 6, 10, 15},
+                   {15.0, 30.0, 45.0});
 }
 
 // A block driven into a row that nothing holds: the row is pushed along (its tall blocks

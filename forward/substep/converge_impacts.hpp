@@ -39,6 +39,10 @@ struct ImpactConvergence {
   // that hold the group at rest (a second complementarity solve) gave 2.6 % but doubled section
   // VII's wall, and a resting solve cut short created energy there.
   int settle_substeps = 0;
+  // Unit vector along gravity (zero without gravity). A block struck through a joint that
+  // carries weight (its normal within 45 deg of `down`) settles as after an impact even when
+  // the two sweeps took the blow (converge_impacts.cpp, mark_struck; model revision 2026-11-28.7).
+  Vec2 down = Vec2::Zero();
 };
 
 struct ImpactCounts {

@@ -165,6 +165,7 @@ void run_one_substep(SubstepContext& w, const SweepSettings& sweep, const Vec2& 
     impacts.closing = kImpactClosingRatio * scale;
     impacts.spent = std::max(kImpactSpentRatio * scale, kImpactSpentRestShare * w.scene.rest_speed);
     impacts.settle_substeps = kImpactSettleSteps * w.options.substeps;
+    if (g > 0.0) impacts.down = gravity / g;
     const ImpactCounts counts =
         w.settling ? ImpactCounts{} : converge_impacts(w.contacts.manifolds, relax, impacts, w.state);
     w.report.impact_groups += counts.solved;
