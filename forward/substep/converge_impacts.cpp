@@ -49,8 +49,13 @@ constexpr double kWeightBearingCosine = 0.70710678118654752;
 // A point's complementarity residual (Signorini: impulse >= its floor, residual >= 0, one of
 // them at its bound): its normal velocity less the closing its gap allows within the substep
 // (the speculative contact of solve_contacts.cpp).
+// Of the blocks' velocities `v` (st.velocity unless given: mark_struck reads the free ones).
+double residual(const ContactManifold& m, const ContactPoint& p, const SweepState& st, double h,
+                const std::vector<Vec3>& v) {
+  return normal_rate(m, p, v) + std::max(current_gap(m, p, st.step_moves), 0.0) / h;
+}
 double residual(const ContactManifold& m, const ContactPoint& p, const SweepState& st, double h) {
-  return normal_rate(m, p, st.velocity) + std::max(current_gap(m, p, st.step_moves), 0.0) / h;
+  return residual(m, p, st, h, st.velocity);
 }
 
 bool unresolved(const ContactManifold& m, const SweepState& st, double h, const ImpactConvergence& tolerance) {
@@ -297,11 +302,8 @@ void mark_struck(const std::vector<ContactManifold>& manifolds, const SweepSetti
   for (const ContactManifold& m : manifolds) {
     if (std::abs(m.normal.dot(settings.down)) < kWeightBearingCosine) continue;
     bool struck = false;
-    for (int q = 0; q < m.point_count && !struck; ++q) {
-      const ContactPoint& p = m.points[q];
-      const double gap = std::max(current_gap(m, p, st.step_moves), 0.0);
-      struck = normal_rate(m, p, st.free_velocity) + gap / relax.h < -settings.closing;
-    }
+    for (int q = 0; q < m.point_count && !struck; ++q)
+      struck = residual(m, m.points[q], st, relax.h, st.free_velocity) < -settings.closing;
     if (!struck) continue;
     for (const int b : {m.block_a, m.block_b})
       if (st.masses[b].moves) st.settling_substeps[b] = std::max(st.settling_substeps[b], settings.settle_substeps);

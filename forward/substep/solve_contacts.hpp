@@ -54,7 +54,8 @@ struct SweepState {
   // (the manifolds do not change within a step); reset with `deep` at the step's start.
   std::optional<BlockManifolds> of_block;
   // Per block: substeps left in which its manifolds are held to a share of the impact margins
-  // after a group solved for an impact took it in (converge_impacts.hpp, kSettleShare). Kept
+  // after a group solved for an impact took it in, or a weight-bearing joint of it was struck
+  // (converge_impacts.cpp: kSettleShare, mark_struck). Kept
   // from step to step: a block's index does not change within a run.
   std::vector<int> settling_substeps;
 };
