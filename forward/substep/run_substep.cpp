@@ -60,11 +60,8 @@ constexpr int kCorrectionPasses = 8;
 // Up to 8 more passes while the last one still corrected (model revision 2026-11-27.6): on
 // Vajont section X degraded the 8th pass closed an open pair 5.6 cm (1.13 % of its smaller
 // block) while pushing its blocks out of deep neighbours, and nothing followed it; with the
-// extra passes 0.54 % (section VII degraded 0.76 -> 0.59 %, at the same cost). Up to 24 since
-// revision 2026-11-28.9: at .28.8 a 1.7 m sliver of section VIII degraded, crushed between two
-// blocks whose impact group took in 7,000 manifolds (too large to solve), closed at 3 m/s for
-// 0.08 s and the 16 passes left it 1.9 cm deep (1.15 % of its size) at the step's end.
-constexpr int kCorrectionExtraPasses = 24;
+// extra passes 0.54 % (section VII degraded 0.76 -> 0.59 %, at the same cost).
+constexpr int kCorrectionExtraPasses = 8;
 constexpr double kCorrectionFraction = 0.8;
 constexpr double kDeepOverlap = 0.004;
 constexpr double kCorrectionShare = 0.5;
