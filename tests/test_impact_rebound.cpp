@@ -264,6 +264,20 @@ TEST(ImpactRebound, DISABLED_ASlowBlockDroppedOntoATallStackDoesNotBounceOffSubs
                    {15.0, 30.0, 45.0});
 }
 
+// KNOWN DEFECT, the same class on sweeps no rule was tuned on (found 2026-11-28): at .28.7,
+// 16 of these 576 drops come back over their bound (63 % of 0.3 m/s worst, bound 37.7 %) and
+// 7 of the 560 below (one stopped by the energy audit at 0.38 s). Candidate revision .28.8
+// (branch struck-on-approach) passed the 576 and left 1 of the 560, but put section VIII
+// degraded over the 1 % overlap bound; docs/verification.md, "Revisions 2026-11-28.8 and .9".
+TEST(ImpactRebound, DISABLED_SlowDropsAtOtherSpeedsAndHeightsDoNotBounceOffSubstep) {
+  expect_inelastic(Shape::Stack, Integrator::Substep, {0.3, 0.38, 0.55, 0.9, 1.7, 4.0}, 576, {3, 5, 7, 9, 11, 13},
+                   {25.0, 40.0});
+}
+TEST(ImpactRebound, DISABLED_SlowDropsOntoStacksSecondSweepDoNotBounceOffSubstep) {
+  expect_inelastic(Shape::Stack, Integrator::Substep, {0.35, 0.45, 0.6, 0.8, 1.2, 2.0, 3.0}, 560, {2, 4, 8, 12, 15},
+                   {20.0, 35.0});
+}
+
 // A block driven into a row that nothing holds: the row is pushed along (its tall blocks
 // topple), the striker is not thrown back, and the floor takes no more momentum than its
 // friction gives (momentum_beyond_friction). Friction 30 and 45 deg (at 45 deg a square
