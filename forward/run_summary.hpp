@@ -89,9 +89,11 @@ struct SolverReport {
   long sleeping_block_steps = 0;  // summed over steps: blocks asleep (control.sleep_time)
   long wakes = 0;                 // sleeping groups woken by a moving block
   // Substep solver, impact groups (forward/substep/converge_impacts.hpp): groups solved
-  // directly, groups too large for it (left to the sweeps), solves undone (energy).
+  // directly, groups past 160 points (an impact's solved in pieces, a settling one's left to the
+  // sweeps), the pieces' solves, solves undone (energy).
   long impact_groups = 0;
   long impact_groups_too_large = 0;
+  long impact_group_pieces = 0;
   long impact_groups_refused = 0;
 };
 

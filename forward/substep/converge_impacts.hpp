@@ -47,7 +47,8 @@ struct ImpactConvergence {
 
 struct ImpactCounts {
   long solved = 0;     // groups solved directly
-  long too_large = 0;  // groups left to the sweeps (more than max_points points)
+  long too_large = 0;  // groups past max_points: settling ones left to the sweeps, impacts in pieces
+  long pieces = 0;     // solves of the pieces of those groups
   long refused = 0;    // solves undone: they would have raised the group's kinetic energy
 };
 

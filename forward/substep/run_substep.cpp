@@ -170,6 +170,7 @@ void run_one_substep(SubstepContext& w, const SweepSettings& sweep, const Vec2& 
         w.settling ? ImpactCounts{} : converge_impacts(w.contacts.manifolds, relax, impacts, w.state);
     w.report.impact_groups += counts.solved;
     w.report.impact_groups_too_large += counts.too_large;
+    w.report.impact_group_pieces += counts.pieces;
     w.report.impact_groups_refused += counts.refused;
     flag_closing_deep(w.contacts.manifolds, sweep.h, w.state);
     converge_deep(w.contacts.manifolds, relax, kDeepIterations, w.state, sweep.h);
