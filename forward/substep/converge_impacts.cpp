@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 
-#include "forward/contact/contact_law.hpp"
 #include "forward/parallel.hpp"
 #include "forward/substep/solve_impact_group.hpp"
 
@@ -157,15 +156,23 @@ void hold_settling(const std::vector<ContactManifold>& manifolds, const std::vec
   }
 }
 
+// The blocks of a group solved for an impact settle for the next settle_substeps.
+void settle_after_impact(const std::vector<ContactManifold>& manifolds, const std::vector<int>& list,
+                         const ImpactConvergence& settings, SweepState& st) {
+  for (const int k : list)
+    for (const int b : {manifolds[k].block_a, manifolds[k].block_b})
+      if (st.masses[b].moves) st.settling_substeps[b] = settings.settle_substeps;
+}
+
 // A group too large to solve whole (an impact spread through a sliding mass: thousands of
 // manifolds) is solved piece by piece around its impacts, deepest first: each seed closing faster
 // than kPieceShare times the impact margin, with all the manifolds of its blocks, grown as any
 // group is up to max_points, the rest of the mass held at the answer it has (a block Gauss-Seidel
 // over the group's pieces). Left whole to the sweeps, a 1.7 m sliver crushed between two blocks of
 // a group of about 7,000 manifolds closed at 3 m/s for 0.08 s and overlapped its neighbour by
-// 1.15 % (Vajont section VIII degraded, revision 2026-11-28.8). Groups of settling blocks only stay with
-// the sweeps: they close under the impact margin. `involved` and `listed` come in clear and are
-// left clear.
+// 1.15 % (Vajont section VIII degraded, revision 2026-11-28.8). Groups of settling blocks only
+// stay with the sweeps: they close under the impact margin. `involved` and `listed` come in
+// clear and are left clear.
 void converge_pieces(std::vector<ContactManifold>& manifolds, const BlockManifolds& of_block,
                      const SweepSettings& relax, const ImpactConvergence& settings, SweepState& st,
                      const std::vector<int>& seeds, std::vector<char>& involved, std::vector<char>& listed,
@@ -173,7 +180,6 @@ void converge_pieces(std::vector<ContactManifold>& manifolds, const BlockManifol
   const double h = relax.h;
   std::vector<std::pair<double, int>> deepest;  // (worst residual, manifold)
   for (const int k : seeds) {
-    if (!unresolved(manifolds[k], st, h, settings)) continue;
     double worst = 0.0;
     for (int q = 0; q < manifolds[k].point_count; ++q)
       worst = std::min(worst, impact_residual(manifolds[k], manifolds[k].points[q], st, h));
@@ -194,12 +200,10 @@ void converge_pieces(std::vector<ContactManifold>& manifolds, const BlockManifol
     converge_group(manifolds, of_block, relax, settings, st, involved, listed, list, piece);
     counts.pieces += piece.solved;
     counts.refused += piece.refused;
+    if (piece.solved > 0) settle_after_impact(manifolds, list, settings, st);
     for (const int j : list) {
       listed[j] = 0;
-      for (const int b : {manifolds[j].block_a, manifolds[j].block_b}) {
-        involved[b] = 0;
-        if (piece.solved > 0 && st.masses[b].moves) st.settling_substeps[b] = settings.settle_substeps;
-      }
+      involved[manifolds[j].block_a] = involved[manifolds[j].block_b] = 0;
     }
   }
 }
@@ -284,10 +288,7 @@ ImpactCounts converge_impacts(std::vector<ContactManifold>& manifolds, const Swe
       const long solved = counts.solved;
       converge_group(manifolds, of_block, relax, margins, st, involved, listed, list, counts);
       if (!impact && counts.solved > solved) hold_settling(manifolds, list, settings, st);
-      if (impact && counts.solved > solved)
-        for (const int k : list)
-          for (const int b : {manifolds[k].block_a, manifolds[k].block_b})
-            if (st.masses[b].moves) st.settling_substeps[b] = settings.settle_substeps;
+      if (impact && counts.solved > solved) settle_after_impact(manifolds, list, settings, st);
     }
     start = end;
   }
