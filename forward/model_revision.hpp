@@ -7,6 +7,6 @@
 
 namespace ddafit {
 
-inline constexpr const char* kModelRevision = "2026-11-29.2";
+inline constexpr const char* kModelRevision = "2026-11-29.3";
 
 }  // namespace ddafit

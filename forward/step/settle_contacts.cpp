@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "forward/common/displace_block.hpp"
+#include "forward/common/supported_blocks.hpp"
 #include "forward/contact/contact_law.hpp"
 #include "forward/step/assemble.hpp"
 #include "forward/step/new_points.hpp"
@@ -54,10 +55,8 @@ bool settle_contacts(ImplicitStepContext& ctx, const StepParameters& step, doubl
   const int passes = ctx.options.settle_passes;
   StepParameters relaxed = step;
   relaxed.time_step *= kSettleStepScale;
-  std::vector<char> touching(s.blocks.size(), 0);
-  for (const ContactManifold& m : contacts.manifolds)
-    for (int q = 0; q < m.point_count; ++q)
-      if (m.points[q].spring.state != ContactState::Open) touching[m.block_a] = touching[m.block_b] = 1;
+  // Blocks resting on the ground (a cluster touching only itself is in flight).
+  std::vector<char> touching = supported_blocks(s, contacts.manifolds, detection.settings.linear_slop);
 
   std::vector<Vec6> velocities(s.blocks.size());
   for (size_t b = 0; b < s.blocks.size(); ++b) {

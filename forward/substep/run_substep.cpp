@@ -9,6 +9,7 @@
 #include "forward/contact/slip_history.hpp"
 #include "forward/common/containment_check.hpp"
 #include "forward/common/energy_check.hpp"
+#include "forward/common/supported_blocks.hpp"
 #include "forward/substep/block_stress.hpp"
 #include "forward/substep/converge_impacts.hpp"
 #include "forward/substep/integrate.hpp"
@@ -240,7 +241,8 @@ double impulse_change(const std::vector<ContactManifold>& manifolds, const std::
   return largest > 0.0 ? change / largest : 0.0;
 }
 
-// Quiet start: the contacts touching at t = 0 take up the weight before the clock runs.
+// Quiet start: the contacts touching at t = 0 take up the weight before the clock runs, for
+// the blocks resting on the ground (common/supported_blocks.hpp).
 // Steps of the scene's length with the touching blocks at rest before each (a given velocity
 // waits for the clock: until revision 2026-11-27.7 the first step carried a touching block
 // v dt before t = 0, 5 cm for a block given 5 m/s at 10 ms, tests/test_impact_depth.cpp), their
@@ -263,10 +265,7 @@ std::string quiet_start(SubstepContext& w) {
     restore();
     return problem;
   }
-  std::vector<char> touching(s.blocks.size(), 0);
-  for (const ContactManifold& m : w.contacts.manifolds)
-    for (int q = 0; q < m.point_count; ++q)
-      if (m.points[q].separation <= settings.linear_slop) touching[m.block_a] = touching[m.block_b] = 1;
+  const std::vector<char> touching = supported_blocks(s, w.contacts.manifolds, settings.linear_slop);
   std::vector<Vec6> initial(s.blocks.size());
   std::vector<char> was_fixed(s.blocks.size());
   for (size_t b = 0; b < s.blocks.size(); ++b) {
