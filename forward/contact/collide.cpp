@@ -51,6 +51,7 @@ void carry_over(const ContactManifold* old, double slop, ContactPoint& p) {
       if (o.id != p.id) continue;
       p.impulse.normal = o.impulse.normal;
       p.impulse.tangent = o.impulse.tangent;
+      p.impulse.carried = o.impulse.carried;
       p.spring = o.spring;
       p.bonded = o.bonded;
       p.fresh = false;

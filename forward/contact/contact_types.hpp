@@ -68,6 +68,7 @@ struct ImpulseState {
   double step_normal = 0.0;   // N s/m, summed over the substeps of this step
   double step_tangent = 0.0;
   double push_out = 0.0;  // N s/m: this substep's push-out impulse (control.split_impulses)
+  double carried = 0.0;   // N s/m: the normal impulse the last warm start applied (substep solver)
 };
 
 // A contact point. Laid out for the substep solver's sweeps: what they read first.

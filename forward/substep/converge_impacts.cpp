@@ -156,12 +156,18 @@ void hold_settling(const std::vector<ContactManifold>& manifolds, const std::vec
   }
 }
 
-// The blocks of a group solved for an impact settle for the next settle_substeps.
+// The blocks of a group solved for an impact settle for the next settle_substeps; those not
+// settling already are struck now, and the next warm start hands on only the impulses their
+// points carried into the impact (solve_contacts.hpp, warm_start).
 void settle_after_impact(const std::vector<ContactManifold>& manifolds, const std::vector<int>& list,
                          const ImpactConvergence& settings, SweepState& st) {
+  if (st.struck_now.size() != st.velocity.size()) st.struck_now.assign(st.velocity.size(), 0);
   for (const int k : list)
-    for (const int b : {manifolds[k].block_a, manifolds[k].block_b})
-      if (st.masses[b].moves) st.settling_substeps[b] = settings.settle_substeps;
+    for (const int b : {manifolds[k].block_a, manifolds[k].block_b}) {
+      if (!st.masses[b].moves) continue;
+      if (st.settling_substeps[b] == 0) st.struck_now[b] = 1;
+      st.settling_substeps[b] = settings.settle_substeps;
+    }
 }
 
 // A group too large to solve whole (an impact spread through a sliding mass: thousands of

@@ -48,18 +48,27 @@ ContactSoftness make_softness(double hertz, double zeta, double h) {
   return {omega / a1, a2 / (1.0 + a2)};
 }
 
-void warm_start(const std::vector<ContactManifold>& manifolds, const std::vector<std::vector<int>>& colours,
+void warm_start(std::vector<ContactManifold>& manifolds, const std::vector<std::vector<int>>& colours,
                 SweepState& st) {
+  const bool any_struck = std::find(st.struck_now.begin(), st.struck_now.end(), 1) != st.struck_now.end();
   for_each_coloured(colours, [&](int k) {
-    const ContactManifold& m = manifolds[k];
+    ContactManifold& m = manifolds[k];
     Vec3& va = st.velocity[m.block_a];
     Vec3& vb = st.velocity[m.block_b];
+    const bool struck = any_struck && (st.struck_now[m.block_a] || st.struck_now[m.block_b]);
     for (int q = 0; q < m.point_count; ++q) {
-      const ContactPoint& p = m.points[q];
-      apply_impulse(va, vb, st.masses[m.block_a], st.masses[m.block_b], p,
-            p.impulse.normal * m.normal + p.impulse.tangent * m.tangent);
+      ContactPoint& p = m.points[q];
+      ImpulseState& i = p.impulse;
+      if (struck && i.normal > std::max(i.carried, 0.0)) {  // the blow's share is not handed on
+        const double resting = std::max(i.carried, 0.0);
+        i.tangent *= resting / i.normal;
+        i.normal = resting;
+      }
+      i.carried = i.normal;
+      apply_impulse(va, vb, st.masses[m.block_a], st.masses[m.block_b], p, i.normal * m.normal + i.tangent * m.tangent);
     }
   });
+  if (any_struck) std::fill(st.struck_now.begin(), st.struck_now.end(), 0);
 }
 
 namespace {
