@@ -222,10 +222,27 @@ TEST(ImpactRebound, ABlockDroppedOntoAStackDoesNotBounceOffSubstep) {
 // substep's warm start applied the impact's impulses again, and over the next two steps the
 // column's two sweeps, each contact left just under the group's margins, rose to 0.25 m/s and
 // fell back. Since .28.6 the group's blocks are held to a tighter margin for two steps after the
-// impact (ImpactConvergence::settle_substeps). Not covered: columns of twenty and thirty blocks
-// still come back (49 % of 5 m/s for a 1 m block onto twenty 0.25 m blocks; 55 % at .28.5).
+// impact (ImpactConvergence::settle_substeps). Columns of twenty and thirty: below.
 TEST(ImpactRebound, ABlockDroppedOntoAStackOfTenDoesNotBounceOffSubstep) {
   expect_inelastic(Shape::Stack, Integrator::Substep, {2.0, 5.0, 10.0}, 48, {10, 15});
+}
+
+// Columns of twenty (24 runs). Until model revision 2026-11-29.4 a 1 m block at 5 m/s onto
+// twenty 0.25 m blocks came back at 49 % of its speed (bound 7 %), and 8 of these 24 beyond the
+// bound: the impact's group stopped striker and column, and the next substep's warm start
+// re-applied the impact's impulses to the column at rest. Since .29.4 the first warm start after
+// an impact hands on only what each point carried into it (solve_contacts.hpp, warm_start):
+// 5.5 % worst (a 1 m block at 5 m/s onto twenty 1 m blocks, 5 ms x 4; bound 6.0 %).
+TEST(ImpactRebound, ABlockDroppedOntoAColumnOfTwentyDoesNotBounceOffSubstep) {
+  expect_inelastic(Shape::Stack, Integrator::Substep, {2.0, 5.0, 10.0}, 24, {20});
+}
+
+// KNOWN DEFECT: columns of thirty (24 runs): 3 beyond the bound at .29.4, all at 10 ms x 3 (a
+// 4 m block at 2 m/s onto thirty 4 x 1 m blocks: 13.9 %, bound 9.9 %; 7 of 24 at .29.3). An
+// impact group grows about two blocks a round and stops after ImpactConvergence::max_rounds (8);
+// more rounds (16) made it worse (6 of 48 over, columns of 20 and 30). Not traced further.
+TEST(ImpactRebound, DISABLED_ABlockDroppedOntoAColumnOfThirtyDoesNotBounceOffSubstep) {
+  expect_inelastic(Shape::Stack, Integrator::Substep, {2.0, 5.0, 10.0}, 24, {30});
 }
 
 // Slow drops: 0.4-1.5 m/s, from just above the speed a 10 ms step of three substeps starts an
