@@ -55,8 +55,9 @@ bool settle_contacts(ImplicitStepContext& ctx, const StepParameters& step, doubl
   const int passes = ctx.options.settle_passes;
   StepParameters relaxed = step;
   relaxed.time_step *= kSettleStepScale;
-  // Blocks resting on the ground (a cluster touching only itself is in flight).
-  std::vector<char> touching = supported_blocks(s, contacts.manifolds, detection.settings.linear_slop);
+  // The blocks that settle: those resting on the ground (a cluster touching only itself is in
+  // flight), and those a pass brings into contact with them.
+  std::vector<char> settles = supported_blocks(s, contacts.manifolds, detection.settings.linear_slop);
 
   std::vector<Vec6> velocities(s.blocks.size());
   for (size_t b = 0; b < s.blocks.size(); ++b) {
@@ -72,7 +73,7 @@ bool settle_contacts(ImplicitStepContext& ctx, const StepParameters& step, doubl
     std::string reason;
     ok = ctx.solver.solve(eq.k, eq.f, eq.d, reason);
     if (!ok) break;
-    const auto moving = [&](int b) { return s.blocks[b].unknown >= 0 && touching[b]; };
+    const auto moving = [&](int b) { return s.blocks[b].unknown >= 0 && settles[b]; };
     const auto unknowns = [&](int b) -> Vec6 { return d.segment<6>(6 * s.blocks[b].unknown); };
     double largest = 0.0;
     for (int b = 0; b < static_cast<int>(s.blocks.size()); ++b)
@@ -108,7 +109,7 @@ bool settle_contacts(ImplicitStepContext& ctx, const StepParameters& step, doubl
         if (!closes && !(p.fresh && p.spring.state != ContactState::Open)) continue;
         p.spring.state = ContactState::Locked;
         p.spring.shear_offset = 0.0;
-        touching[m.block_a] = touching[m.block_b] = 1;
+        settles[m.block_a] = settles[m.block_b] = 1;
         converged_closed = false;
       }
     if (converged && converged_closed) break;
