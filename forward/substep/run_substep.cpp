@@ -243,7 +243,7 @@ double impulse_change(const std::vector<ContactManifold>& manifolds, const std::
 
 // Quiet start: the contacts touching at t = 0 take up the weight before the clock runs, for
 // the blocks resting on the ground (common/supported_blocks.hpp).
-// Steps of the scene's length with the touching blocks at rest before each (a given velocity
+// Steps of the scene's length with those blocks at rest before each (a given velocity
 // waits for the clock: until revision 2026-11-27.7 the first step carried a touching block
 // v dt before t = 0, 5 cm for a block given 5 m/s at 10 ms, tests/test_impact_depth.cpp), their
 // strain following their contacts, until no normal impulse changes by more than
@@ -265,13 +265,13 @@ std::string quiet_start(SubstepContext& w) {
     restore();
     return problem;
   }
-  const std::vector<char> touching = supported_blocks(s, w.contacts.manifolds, settings.linear_slop);
+  const std::vector<char> resting = supported_blocks(s, w.contacts.manifolds, settings.linear_slop);
   std::vector<Vec6> initial(s.blocks.size());
   std::vector<char> was_fixed(s.blocks.size());
   for (size_t b = 0; b < s.blocks.size(); ++b) {
     initial[b] = s.blocks[b].velocity;
     was_fixed[b] = s.blocks[b].fixed;
-    if (!touching[b]) s.blocks[b].fixed = true;  // in flight: takes no part
+    if (!resting[b]) s.blocks[b].fixed = true;  // in flight: takes no part
   }
   std::vector<double> before;
   w.settling = true;
