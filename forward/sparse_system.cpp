@@ -3,15 +3,21 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <mutex>
 #include <numeric>
 
 #include <cholmod.h>
+#include <omp.h>
 
 namespace ddafit {
 
 struct SparseSolver::Backend {
   cholmod_common common;
   cholmod_factor* factor = nullptr;
+  // The system matrix, kept from solve to solve: allocated afresh for every pass it was freed
+  // at the top of the heap, which glibc then returned to the system and faulted back in
+  // (100,000 page faults on the 411-block wall's 150 steps, a quarter of its run time).
+  cholmod_sparse* matrix = nullptr;
   Eigen::VectorXd last_solution;
   double factor_seconds = 0.0;     // wall time of the last factorisation
   double iteration_seconds = 0.0;  // running mean wall time of one CG iteration
@@ -20,6 +26,34 @@ struct SparseSolver::Backend {
 };
 
 namespace {
+
+// Debian's CHOLMOD 5.12 opens an OpenMP team of 4 threads (CHOLMOD_OMP_NUM_THREADS, fixed
+// when it was built) for loops inside every supernode, whatever --threads says. On a DDA system
+// (6x6 blocks, supernodes of a few dozen columns) each team wakes and parks its threads for
+// microseconds of work: the 411-block brick wall made 471,000 futex calls in 30 steps, and its
+// factorisations took twice as long as on one thread (bench/peer, docs/performance.md). With
+// max-active-levels at 0 every region CHOLMOD opens runs on the calling thread alone; the
+// setting is restored when the last factorisation in progress ends (a study may run several
+// forward models on threads of its own, and the setting is the process's), so the substep
+// solver's own loops are untouched.
+bool factorize_on_one_thread(cholmod_sparse* a, SparseSolver::Backend& be) {
+  static std::mutex mutex;
+  static int in_progress = 0;
+  static int saved_levels = 1;
+  {
+    const std::lock_guard<std::mutex> lock(mutex);
+    if (in_progress++ == 0) {
+      saved_levels = omp_get_max_active_levels();
+      omp_set_max_active_levels(0);
+    }
+  }
+  const int ok = cholmod_factorize(a, be.factor, &be.common);
+  {
+    const std::lock_guard<std::mutex> lock(mutex);
+    if (--in_progress == 0) omp_set_max_active_levels(saved_levels);
+  }
+  return ok != 0;
+}
 
 bool refactorize(SparseSolver::Backend& be, SolverCounters& counters, cholmod_sparse* a, int n, std::string& reason);
 bool preconditioned_cg(SparseSolver::Backend& be, const SolverOptions& options, cholmod_sparse* a,
@@ -58,10 +92,19 @@ SparseSolver::SparseSolver(const SolverOptions& options) : options_(options), ba
   cholmod_start(&backend_->common);
   backend_->common.print = 0;
   backend_->common.error_handler = nullptr;
+  // Supernodes twice as relaxed as CHOLMOD's defaults (nrelax 4/16/48 columns, zrelax
+  // 0.8/0.1/0.05): a DDA matrix is made of 6x6 blocks, and its default supernodes are small
+  // (182 on the 411-block wall, 2460 columns). Fewer, larger ones cost a few more zeros but
+  // fewer dense kernel calls: 1.2 s less of 6.5 s on that wall (docs/performance.md).
+  for (int i = 0; i < 3; ++i) {
+    backend_->common.nrelax[i] *= 2;
+    backend_->common.zrelax[i] *= 2.0;
+  }
 }
 
 SparseSolver::~SparseSolver() {
   if (backend_->factor) cholmod_free_factor(&backend_->factor, &backend_->common);
+  if (backend_->matrix) cholmod_free_sparse(&backend_->matrix, &backend_->common);
   cholmod_finish(&backend_->common);
 }
 
@@ -87,7 +130,10 @@ bool SparseSolver::solve(const BlockSparseMatrix& k, const Eigen::VectorXd& rhs,
   for (int b = 0; b < nb; ++b) column_start[b + 1] += column_start[b];
 
   const size_t nnz = 36 * k.pairs.size() + 21 * static_cast<size_t>(nb);
-  cholmod_sparse* a = cholmod_allocate_sparse(n, n, nnz, 1, 1, 1, CHOLMOD_REAL, &be.common);
+  if (be.matrix && (static_cast<int>(be.matrix->nrow) != n || be.matrix->nzmax < nnz))
+    cholmod_free_sparse(&be.matrix, &be.common);
+  if (!be.matrix) be.matrix = cholmod_allocate_sparse(n, n, nnz, 1, 1, 1, CHOLMOD_REAL, &be.common);
+  cholmod_sparse* a = be.matrix;
   auto* ap = static_cast<int*>(a->p);
   auto* ai = static_cast<int*>(a->i);
   auto* ax = static_cast<double*>(a->x);
@@ -120,13 +166,11 @@ bool SparseSolver::solve(const BlockSparseMatrix& k, const Eigen::VectorXd& rhs,
     counters_.cg_iterations += iterations;
     if (converged && x.allFinite()) {
       ++counters_.cg_solves;
-      cholmod_free_sparse(&a, &be.common);
       be.last_solution = x;
       return true;
     }
   }
   const bool ok = refactorize(be, counters_, a, n, reason);
-  cholmod_free_sparse(&a, &be.common);
   if (!ok) return false;
 
   cholmod_dense* b = cholmod_allocate_dense(n, 1, n, CHOLMOD_REAL, &be.common);
@@ -167,7 +211,7 @@ bool refactorize(SparseSolver::Backend& be, SolverCounters& counters, cholmod_sp
   }
   counters.symbolic_analyses += !same_pattern;
   ++counters.factorizations;
-  bool ok = be.factor != nullptr && cholmod_factorize(a, be.factor, &be.common) != 0;
+  bool ok = be.factor != nullptr && factorize_on_one_thread(a, be);
   if (ok && (be.common.status == CHOLMOD_NOT_POSDEF || be.factor->minor < static_cast<size_t>(n))) {
     ok = false;
     reason = "the system matrix is not positive definite (pivot " + std::to_string(be.factor->minor / 6) +
