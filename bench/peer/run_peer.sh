@@ -24,6 +24,9 @@ NTDDA_GIT=${NTDDA_GIT:-/work/.mirror/doolin+ntdda/repo}
 W=/tmp                                  # ntdda source in $W/ntdda, build in $W/ntdda-build (docs/peers/ntdda.md)
 PIPELINE=${NTDDA_PIPELINE:-$W/ntdda-build/tests/unit/pipeline_test}   # override only to test this script
 DDAFIT=${DDAFIT:-/work/main/build/apps/ddafit/ddafit}
+# Every run starts in its own folder, so a relative path (the documented
+# DDAFIT=build/apps/ddafit/ddafit) is made absolute here; before, each ddafit run failed rc=127.
+[ -e "$DDAFIT" ] && DDAFIT=$(realpath "$DDAFIT")
 WALL_PY=${WALL_PY:-/work/shared/docs/peers/ntdda_wall.py}
 ANA=${ANA:-$HERE/wall.ana}
 REPORT_PY=$HERE/peer_report.py
