@@ -7,6 +7,6 @@
 
 namespace ddafit {
 
-inline constexpr const char* kModelRevision = "2026-11-29.4";
+inline constexpr const char* kModelRevision = "2026-11-29.5";
 
 }  // namespace ddafit

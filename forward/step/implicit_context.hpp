@@ -5,6 +5,8 @@
 // parameters (StepParameters) where the attempt matters.
 #pragma once
 
+#include <vector>
+
 #include "forward/block_system.hpp"
 #include "forward/contact/contact_types.hpp"
 #include "forward/contact/detect_contacts.hpp"
@@ -33,6 +35,8 @@ struct ImplicitStepContext {
   SparseSolver solver;
   GlobalSystem equations;
   WorstOverlap worst;  // deepest overlap at the end of an accepted step, so far
+  // Per block: steps left in which it counts as just collided (resolve_impacts.cpp).
+  std::vector<int> collision_steps_left;
   StepProfile& profile;
   RunCounters& run;
 };

@@ -20,8 +20,9 @@ namespace ddafit {
 // at most tan(phi) times the normal one (Mohr-Coulomb, seed Eq. 2-3 for phi), which may
 // stop the slip but not reverse it. `time_step` is the step the impulses are sized for.
 // Changes the blocks' velocities (the V0 of the step); returns how many points it stopped
-// and marks in `struck` (one entry per block) the free blocks of the impact groups, those
-// whose fastest approach exceeded |g| dt (not the resting groups it only settles).
+// and marks in `struck` (one entry per block) the free blocks of the impact groups that
+// collide (fastest approach beyond 3 |g| dt) or hold a block that collided within the last 20
+// steps; groups approaching slower are settled, not struck.
 int resolve_impacts(ImplicitStepContext& ctx, double time_step, std::vector<char>& struck);
 
 }  // namespace ddafit
