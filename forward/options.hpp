@@ -81,6 +81,13 @@ struct SimulationOptions {
   // (docs/performance.md). false refactorises on every pass, as published DDA codes do.
   bool reuse_factorization = false;
 
+  // Between open-close passes of a step only the contact points that changed state differ
+  // (a handful of springs): update the last Cholesky factor by their rank-one terms instead of
+  // refactorising, when that is cheaper (forward/low_rank_change.hpp, sparse_system.hpp), with
+  // each solution checked against the pass's own system. The answers are those of a
+  // refactorisation to round-off; false refactorises every pass (the reference).
+  bool update_factorization = true;
+
   // --- Substep solver (forward/substep/) ---
   // time.substeps: velocity-level substeps per step. Each substep integrates velocities,
   // makes one biased sweep over the contacts, moves the blocks and makes one relax sweep

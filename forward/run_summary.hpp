@@ -68,6 +68,8 @@ struct RunCounters {
   long symbolic_analyses = 0;   // sparse orderings: the contact graph changed
   long factorizations = 0;      // Cholesky factorisations (one per open-close pass unless CG)
   long cg_solves = 0;           // passes solved by CG on an older factor (reuse_factorization)
+  long factor_updates = 0;      // passes solved on the last factor updated by rank-one terms (update_factorization)
+  long update_rank = 0;         // rank-one terms those updates applied
   double final_penalty = 0.0;
   double smallest_step = 0.0;
   double largest_step = 0.0;

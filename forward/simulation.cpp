@@ -81,6 +81,7 @@ std::vector<std::string> unused_setting_warnings(const SimulationOptions& o, con
   if (running == Integrator::Substep) {
     if (o.max_open_close_iterations != d.max_open_close_iterations) unused.push_back("control.max_open_close_iterations");
     if (o.reuse_factorization != d.reuse_factorization) unused.push_back("control.reuse_factorization");
+    if (o.update_factorization != d.update_factorization) unused.push_back("control.update_factorization");
     if (o.settle_passes != d.settle_passes) unused.push_back("control.settle_passes");
     if (o.penalty != d.penalty) unused.push_back("control.penalty");
     if (o.penalty_factor != d.penalty_factor) unused.push_back("control.penalty_factor");

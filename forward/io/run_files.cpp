@@ -81,6 +81,8 @@ std::string summary_json_text(const std::string& scene_path, const SimulationRes
               {"symbolic_analyses", s.run.symbolic_analyses},
               {"factorizations", s.run.factorizations},
               {"cg_solves", s.run.cg_solves},
+              {"factor_updates", s.run.factor_updates},
+              {"update_rank", s.run.update_rank},
               {"wall_seconds", s.profile.total},
               {"simulated_time", s.run.simulated_time},
               {"smallest_step", s.run.smallest_step},

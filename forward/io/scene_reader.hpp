@@ -92,6 +92,7 @@ inline constexpr ControlKey kControlKeys[] = {
     {"settle_passes", &SimulationOptions::settle_passes},
     {"plane_strain", &SimulationOptions::plane_strain},
     {"reuse_factorization", &SimulationOptions::reuse_factorization},
+    {"update_factorization", &SimulationOptions::update_factorization},
     {"contact_hertz", &SimulationOptions::contact_hertz},
     {"contact_damping_ratio", &SimulationOptions::contact_damping_ratio},
     {"split_impulses", &SimulationOptions::split_impulses},

@@ -22,6 +22,7 @@ void assemble_blocks(const BlockSystem& s, const StepParameters& step, BlockSpar
     Mat6 kb = (2.0 / (dt * dt)) * m;
     kb.block<3, 3>(3, 3) += b.area * s.elastic[b.material];
     k.add(b.unknown, b.unknown, kb);
+    k.block_terms.push_back(kb);
     auto fb = f.segment<6>(6 * b.unknown);
     fb += (2.0 / dt) * m * b.velocity;
     fb.segment<3>(3) -= b.area * b.stress;
@@ -35,10 +36,12 @@ void assemble_blocks(const BlockSystem& s, const StepParameters& step, BlockSpar
   }
 }
 
-// Adds the spring energy (stiffness/2) (c0 + a.Di + b.Dj)^2 to the system.
+// Adds the spring energy (stiffness/2) (c0 + a.Di + b.Dj)^2 to the system, and records its
+// stiffness term under `key` (SpringTerm).
 void add_spring(const Block& bi, const Block& bj, const Vec6& a, const Vec6& b, double c0, double stiffness,
-                BlockSparseMatrix& k, Eigen::VectorXd& f) {
+                std::uint64_t key, BlockSparseMatrix& k, Eigen::VectorXd& f) {
   const int ui = bi.unknown, uj = bj.unknown;
+  k.springs.push_back({key, ui, uj, stiffness, ui >= 0 ? a : Vec6::Zero(), uj >= 0 ? b : Vec6::Zero()});
   if (ui >= 0) {
     k.add(ui, ui, stiffness * a * a.transpose());
     f.segment<6>(6 * ui) -= stiffness * c0 * a;
@@ -58,7 +61,8 @@ void assemble(const BlockSystem& s, const ContactSet& contacts, const StepParame
   k.reset(s.free_block_count);
   f.setZero(6 * s.free_block_count);
   assemble_blocks(s, step, k, f);
-  for (const ContactManifold& m : contacts.manifolds) {
+  for (size_t mi = 0; mi < contacts.manifolds.size(); ++mi) {
+    const ContactManifold& m = contacts.manifolds[mi];
     const Block& ba = s.blocks[m.block_a];
     const Block& bb = s.blocks[m.block_b];
     // Keep the pair in the sparsity pattern even while its points are open, so that
@@ -69,10 +73,12 @@ void assemble(const BlockSystem& s, const ContactSet& contacts, const StepParame
       const ContactPoint& p = m.points[q];
       if (p.spring.state == ContactState::Open) continue;
       const PointSprings lin = point_springs(s, m, p);
+      const std::uint64_t key = 4 * static_cast<std::uint64_t>(mi) + 2 * q;  // + 1 for the shear spring
       // Normal spring (p/2) (d_n - reference)^2, unloaded at spring_reference() (assemble.hpp).
-      add_spring(ba, bb, lin.normal_a, lin.normal_b, lin.gap0 - spring_reference(p, step), step.penalty, k, f);
+      add_spring(ba, bb, lin.normal_a, lin.normal_b, lin.gap0 - spring_reference(p, step), step.penalty, key, k, f);
       if (p.spring.state == ContactState::Locked) {
-        add_spring(ba, bb, lin.shear_a, lin.shear_b, p.spring.shear_offset, step.shear_penalty, k, f);
+        add_spring(ba, bb, lin.shear_a, lin.shear_b, p.spring.shear_offset, step.shear_penalty, key + 1,
+                   k, f);
       } else {
         // Sliding: a known friction force opposing the slip of b relative to a.
         const double force = p.spring.slip_direction * sliding_friction_force(m, p);

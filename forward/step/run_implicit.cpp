@@ -52,6 +52,7 @@ void run_implicit(const Scene& scene, BlockSystem& system, RunRecorder& recorder
   const SimulationOptions& options = scene.options;
   SolverOptions solver_options;
   solver_options.reuse_factorization = options.reuse_factorization;
+  solver_options.update_factorization = options.update_factorization;
   ImplicitStepContext ctx(scene, system, summary, solver_options);
   TimeStepControl& control = ctx.control;
   control = make_time_step_control(options, scene.max_step, system.half_model_size, automatic_penalty(scene));
@@ -196,6 +197,8 @@ void run_implicit(const Scene& scene, BlockSystem& system, RunRecorder& recorder
   run.symbolic_analyses = ctx.solver.counters().symbolic_analyses;
   run.factorizations = ctx.solver.counters().factorizations;
   run.cg_solves = ctx.solver.counters().cg_solves;
+  run.factor_updates = ctx.solver.counters().factor_updates;
+  run.update_rank = ctx.solver.counters().update_rank;
   run.final_penalty = control.penalty;
   report_overlap(system, ctx.worst, summary.solver);
 }
