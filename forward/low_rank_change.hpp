@@ -26,11 +26,22 @@ struct LowRankChange {
   int rank() const { return static_cast<int>(updates.size() + downdates.size()); }
 };
 
+// What a factor stands for, as far as low_rank_change needs it: the assembly's size, block
+// pairs, blocks' own terms and springs (not its values or index, which it does not read).
+struct AssembledTerms {
+  int size = 0;
+  std::vector<std::pair<int, int>> pairs;
+  std::vector<Mat6> block_terms;
+  std::vector<SpringTerm> springs;
+};
+// Copies k's terms into `terms`, reusing its storage.
+void remember_terms(const BlockSparseMatrix& k, AssembledTerms& terms);
+
 // K_now - K_then from the two assemblies' spring lists: a spring in `now` only is an update,
 // one in `then` only a downdate, one that differs (a stiffer penalty) both. Not representable
 // when the two have different sizes or block pairs (the contact graph changed) or the change
 // has more than `max_rank` terms, or the blocks' own terms differ (another step: a new step
 // length, blocks that turned). sparse_system.cpp checks each solution against K_now itself.
-LowRankChange low_rank_change(const BlockSparseMatrix& then, const BlockSparseMatrix& now, int max_rank);
+LowRankChange low_rank_change(const AssembledTerms& then, const BlockSparseMatrix& now, int max_rank);
 
 }  // namespace ddafit

@@ -30,7 +30,7 @@ struct SparseSolver::Backend {
   // `factored` is the system the factor in use (updated when in_use_updated) stands for.
   cholmod_factor* updated = nullptr;
   bool in_use_updated = false;
-  BlockSparseMatrix factored;
+  AssembledTerms factored;
   bool factored_valid = false;
   // Of the fill-reducing ordering: the permuted position of each unknown, and for each permuted
   // column the entries of L on its path to the root of the elimination tree (an update's cost).
@@ -205,7 +205,7 @@ bool SparseSolver::solve(const BlockSparseMatrix& k, const Eigen::VectorXd& rhs,
   const bool ok = refactorize(be, counters_, a, n, reason);
   if (!ok) return false;
   if (options_.update_factorization) {
-    be.factored = k;
+    remember_terms(k, be.factored);
     be.factored_valid = true;
   }
   if (!solve_with(be.factor, be.common, rhs, x)) {
@@ -369,7 +369,7 @@ bool solve_updated(SparseSolver::Backend& be, const SolverOptions& options, Solv
   }
   ++counters.factor_updates;
   counters.update_rank += change.rank();
-  be.factored = k;
+  remember_terms(k, be.factored);
   return true;
 }
 
