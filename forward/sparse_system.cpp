@@ -46,12 +46,12 @@ namespace {
 // (6x6 blocks, supernodes of a few dozen columns) each team wakes and parks its threads for
 // microseconds of work: the 411-block brick wall made 471,000 futex calls in 30 steps, and its
 // factorisations took twice as long as on one thread (bench/peer, docs/performance.md). With
-// max-active-levels at 0 every region CHOLMOD opens runs on the calling thread alone. Its
-// updates, copies and solves open teams as well (265,000 futex calls on that wall's 150 steps
-// with factor updates and the factorisation alone on one thread), so the whole solve runs in
-// this scope. The setting is restored when the last solve in progress ends (a study may run
-// several forward models on threads of its own, and the setting is the process's), so the
-// substep solver's own loops are untouched.
+// max-active-levels at 0 every region CHOLMOD opens runs on the calling thread alone; the
+// whole solve (factorisation, factor update, copies, triangular solves) runs in this scope.
+// (libgomp still signals from inside cholmod_super_numeric: 265,000 futex wakes on that wall's
+// 150 steps, without waiters.) The setting is restored when the last solve in progress ends
+// (a study may run several forward models on threads of its own, and the setting is the
+// process's), so the substep solver's own loops are untouched.
 class CholmodOnOneThread {
  public:
   CholmodOnOneThread() {
