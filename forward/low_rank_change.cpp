@@ -27,14 +27,7 @@ void add_term(std::vector<RankOneTerm>& terms, const SpringTerm& s) {
 
 }  // namespace
 
-void remember_terms(const BlockSparseMatrix& k, AssembledTerms& terms) {
-  terms.size = k.size;
-  terms.pairs = k.pairs;
-  terms.block_terms = k.block_terms;
-  terms.springs = k.springs;
-}
-
-LowRankChange low_rank_change(const AssembledTerms& then, const BlockSparseMatrix& now, int max_rank) {
+LowRankChange low_rank_change(const AssembledTerms& then, const AssembledTerms& now, int max_rank) {
   LowRankChange change;
   if (then.size != now.size || then.pairs != now.pairs || then.block_terms != now.block_terms) return change;
   const std::vector<SpringTerm>& a = then.springs;

@@ -31,6 +31,7 @@ struct SparseSolver::Backend {
   cholmod_factor* updated = nullptr;
   bool in_use_updated = false;
   AssembledTerms factored;
+  AssembledTerms current;  // the pass's own terms, while it is being solved on an update
   bool factored_valid = false;
   // Of the fill-reducing ordering: the permuted position of each unknown, and for each permuted
   // column the entries of L on its path to the root of the elimination tree (an update's cost).
@@ -73,6 +74,14 @@ class CholmodOnOneThread {
   static inline int in_progress_ = 0;
   static inline int saved_levels_ = 1;
 };
+
+// Copies k's terms into `terms`, reusing its storage.
+void remember_terms(const BlockSparseMatrix& k, AssembledTerms& terms) {
+  terms.size = k.size;
+  terms.pairs = k.pairs;
+  terms.block_terms = k.block_terms;
+  terms.springs = k.springs;
+}
 
 bool refactorize(SparseSolver::Backend& be, SolverCounters& counters, cholmod_sparse* a, int n, std::string& reason);
 bool solve_updated(SparseSolver::Backend& be, const SolverOptions& options, SolverCounters& counters,
@@ -332,7 +341,8 @@ bool solve_updated(SparseSolver::Backend& be, const SolverOptions& options, Solv
                    const BlockSparseMatrix& k, cholmod_sparse* a, const Eigen::VectorXd& rhs, Eigen::VectorXd& x) {
   if (be.path_entries.empty()) return false;
   const int n = static_cast<int>(rhs.size());
-  const LowRankChange change = low_rank_change(be.factored, k, std::max(8, n / 8));
+  remember_terms(k, be.current);
+  const LowRankChange change = low_rank_change(be.factored, be.current, std::max(8, n / 8));
   if (!change.representable) return false;
   double cost = 0.0;
   for (const auto* terms : {&change.updates, &change.downdates})
@@ -369,7 +379,7 @@ bool solve_updated(SparseSolver::Backend& be, const SolverOptions& options, Solv
   }
   ++counters.factor_updates;
   counters.update_rank += change.rank();
-  remember_terms(k, be.factored);
+  std::swap(be.factored, be.current);
   return true;
 }
 

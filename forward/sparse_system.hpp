@@ -11,19 +11,9 @@
 #include <vector>
 
 #include "forward/kinematics.hpp"
+#include "forward/low_rank_change.hpp"
 
 namespace ddafit {
-
-// A contact spring's share of K: stiffness x g g^T, with g = (a on free block i's unknowns,
-// b on free block j's; a side is -1 for a fixed block). Its key names the point and the spring
-// (normal or shear) within the step's contact list; springs are recorded in increasing key.
-struct SpringTerm {
-  std::uint64_t key = 0;
-  int i = -1, j = -1;
-  double stiffness = 0.0;
-  Vec6 a = Vec6::Zero(), b = Vec6::Zero();
-  bool operator==(const SpringTerm&) const = default;
-};
 
 struct BlockSparseMatrix {
   int size = 0;                         // number of free blocks

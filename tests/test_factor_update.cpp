@@ -77,6 +77,8 @@ BlockSparseMatrix assemble_grid(const SpringSet& s, const std::vector<char>& on,
   return k;
 }
 
+AssembledTerms terms_of(const BlockSparseMatrix& k) { return {k.size, k.pairs, k.block_terms, k.springs}; }
+
 Eigen::MatrixXd dense(const BlockSparseMatrix& k) {
   Eigen::MatrixXd d = Eigen::MatrixXd::Zero(6 * k.size, 6 * k.size);
   for (int b = 0; b < k.size; ++b) d.block<6, 6>(6 * b, 6 * b) = k.diagonal[b];
@@ -119,9 +121,7 @@ TEST(FactorUpdate, RankOneTermsAreTheChangeOfK) {
       for (size_t q = 0; q < now.size(); ++q)
         if (flipped[q]) now[q] = !now[q], ++flips;
       const BlockSparseMatrix a = assemble_grid(s, then, 1e11), b = assemble_grid(s, now, 1e11);
-      AssembledTerms then_terms;
-      remember_terms(a, then_terms);
-      const LowRankChange c = low_rank_change(then_terms, b, 1000);
+      const LowRankChange c = low_rank_change(terms_of(a), terms_of(b), 1000);
       ASSERT_TRUE(c.representable);
       EXPECT_EQ(c.rank(), flips);
       const Eigen::MatrixXd expected = dense(b) - dense(a);
@@ -140,17 +140,16 @@ TEST(FactorUpdate, AStifferPenaltyANewPairOrANewStepIsNoUpdate) {
   const SpringSet s = make_grid(3, 3, rng);
   std::vector<char> on(s.springs.size(), 1);
   const BlockSparseMatrix a = assemble_grid(s, on, 1e11), raised = assemble_grid(s, on, 1e12);
-  AssembledTerms then;
-  remember_terms(a, then);
-  EXPECT_FALSE(low_rank_change(then, raised, static_cast<int>(s.springs.size())).representable);
-  EXPECT_TRUE(low_rank_change(then, raised, 2 * static_cast<int>(s.springs.size())).representable);
+  const AssembledTerms then = terms_of(a);
+  EXPECT_FALSE(low_rank_change(then, terms_of(raised), static_cast<int>(s.springs.size())).representable);
+  EXPECT_TRUE(low_rank_change(then, terms_of(raised), 2 * static_cast<int>(s.springs.size())).representable);
   BlockSparseMatrix extra = a;
   extra.add(0, 8, Mat6::Zero());
-  EXPECT_FALSE(low_rank_change(then, extra, 1000).representable);
+  EXPECT_FALSE(low_rank_change(then, terms_of(extra), 1000).representable);
   SpringSet shorter_step = s;
   shorter_step.inertia[4] *= 1.0 + 1e-9;
-  EXPECT_FALSE(low_rank_change(then, assemble_grid(shorter_step, on, 1e11), 1000).representable);
-  EXPECT_TRUE(low_rank_change(then, assemble_grid(s, on, 1e11), 1000).representable);
+  EXPECT_FALSE(low_rank_change(then, terms_of(assemble_grid(shorter_step, on, 1e11)), 1000).representable);
+  EXPECT_TRUE(low_rank_change(then, terms_of(assemble_grid(s, on, 1e11)), 1000).representable);
 }
 
 TEST(FactorUpdate, PassesOnAnUpdatedFactorSolveTheirOwnSystem) {
