@@ -58,7 +58,7 @@ struct SolverOptions {
   // Update the last factor by the rank-one terms of the change in K (low_rank_change.hpp)
   // instead of refactorising, when the change is a few contact springs: between open-close
   // passes only the points that changed state differ. The solution is checked against K
-  // (|K x - F| <= tolerance |F| after at most one refinement) and refactorised otherwise.
+  // (update_tolerance, below) and the pass refactorised otherwise.
   bool update_factorization = true;
   // A solution on an updated factor must leave |K x - F| <= update_tolerance |F| (after at most
   // one step of refinement). Direct and updated solves leave 1e-14 to 1e-13 on the brick walls;
