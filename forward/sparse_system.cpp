@@ -102,6 +102,17 @@ void BlockSparseMatrix::reset(int free_blocks) {
   springs.clear();
 }
 
+int BlockSparseMatrix::pair(int a, int b) {
+  const int lo = std::min(a, b), hi = std::max(a, b);
+  const std::uint64_t key = (static_cast<std::uint64_t>(lo) << 32) | static_cast<std::uint32_t>(hi);
+  auto [it, inserted] = pair_index.emplace(key, static_cast<int>(pairs.size()));
+  if (inserted) {
+    pairs.emplace_back(lo, hi);
+    off_diagonal.push_back(Mat6::Zero());
+  }
+  return it->second;
+}
+
 void BlockSparseMatrix::add(int a, int b, const Mat6& m) {
   if (a == b) {
     diagonal[a] += m;

@@ -30,6 +30,15 @@ struct BlockSparseMatrix {
   void reset(int free_blocks);
   // K_ab += m (and K_ba += m^T implicitly). a == b adds to the diagonal.
   void add(int a, int b, const Mat6& m);
+  // The index of pair (a, b), a != b, in `pairs`, added with a zero block if new; then
+  // add_to_pair(index, a < b, m) is add(a, b, m) without looking the pair up again.
+  int pair(int a, int b);
+  void add_to_pair(int index, bool a_first, const Mat6& m) {
+    if (a_first)
+      off_diagonal[index] += m;
+    else
+      off_diagonal[index] += m.transpose();
+  }
 };
 
 // What a solver has done so far: the cost drivers of docs/performance.md.

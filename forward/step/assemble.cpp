@@ -37,9 +37,9 @@ void assemble_blocks(const BlockSystem& s, const StepParameters& step, BlockSpar
 }
 
 // Adds the spring energy (stiffness/2) (c0 + a.Di + b.Dj)^2 to the system, and records its
-// stiffness term under `key` (SpringTerm).
+// stiffness term under `key` (SpringTerm). `pair`: the two blocks' index in k.pairs, when both are free.
 void add_spring(const Block& bi, const Block& bj, const Vec6& a, const Vec6& b, double c0, double stiffness,
-                std::uint64_t key, BlockSparseMatrix& k, Eigen::VectorXd& f) {
+                std::uint64_t key, int pair, BlockSparseMatrix& k, Eigen::VectorXd& f) {
   const int ui = bi.unknown, uj = bj.unknown;
   k.springs.push_back({key, ui, uj, stiffness, ui >= 0 ? a : Vec6::Zero(), uj >= 0 ? b : Vec6::Zero()});
   if (ui >= 0) {
@@ -50,7 +50,7 @@ void add_spring(const Block& bi, const Block& bj, const Vec6& a, const Vec6& b, 
     k.add(uj, uj, stiffness * b * b.transpose());
     f.segment<6>(6 * uj) -= stiffness * c0 * b;
   }
-  if (ui >= 0 && uj >= 0) k.add(ui, uj, stiffness * a * b.transpose());
+  if (pair >= 0) k.add_to_pair(pair, ui < uj, stiffness * a * b.transpose());
 }
 
 }  // namespace
@@ -68,17 +68,18 @@ void assemble(const BlockSystem& s, const ContactSet& contacts, const StepParame
     // Keep the pair in the sparsity pattern even while its points are open, so that
     // contacts opening and closing during the open-close iteration do not force a new
     // symbolic analysis.
-    if (ba.unknown >= 0 && bb.unknown >= 0) k.add(ba.unknown, bb.unknown, Mat6::Zero());
+    const int pair = ba.unknown >= 0 && bb.unknown >= 0 ? k.pair(ba.unknown, bb.unknown) : -1;
     for (int q = 0; q < m.point_count; ++q) {
       const ContactPoint& p = m.points[q];
       if (p.spring.state == ContactState::Open) continue;
       const PointSprings lin = point_springs(s, m, p);
       const std::uint64_t key = 4 * static_cast<std::uint64_t>(mi) + 2 * q;  // + 1 for the shear spring
       // Normal spring (p/2) (d_n - reference)^2, unloaded at spring_reference() (assemble.hpp).
-      add_spring(ba, bb, lin.normal_a, lin.normal_b, lin.gap0 - spring_reference(p, step), step.penalty, key, k, f);
+      add_spring(ba, bb, lin.normal_a, lin.normal_b, lin.gap0 - spring_reference(p, step), step.penalty, key, pair, k,
+                 f);
       if (p.spring.state == ContactState::Locked) {
         add_spring(ba, bb, lin.shear_a, lin.shear_b, p.spring.shear_offset, step.shear_penalty, key + 1,
-                   k, f);
+                   pair, k, f);
       } else {
         // Sliding: a known friction force opposing the slip of b relative to a.
         const double force = p.spring.slip_direction * sliding_friction_force(m, p);
