@@ -131,6 +131,8 @@ TEST(Cli, BenchWritesOneCsvRowPerSize) {
   std::getline(csv, row);
   EXPECT_FALSE(std::getline(csv, extra) && !extra.empty()) << "one size, one row";
   EXPECT_EQ(header.rfind("block_size,blocks,steps,open_close_iterations,", 0), 0u) << header;
+  // The implicit solver's two ways of solving a pass: factorisations and factor updates.
+  EXPECT_NE(header.find(",factorizations,factor_updates,"), std::string::npos) << header;
   EXPECT_EQ(row.rfind("34.3,183,", 0), 0u) << "section I has 183 free blocks: " << row;
   EXPECT_NE(row.find(",completed"), std::string::npos) << row;
 }

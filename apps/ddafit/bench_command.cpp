@@ -87,15 +87,15 @@ int run_bench(const BenchArgs& args) {
   auto csv = fmt::output_file(args.out + "/bench.csv");
   csv.print("block_size,blocks,steps,open_close_iterations,simulated_time,step_cuts,penalty_raises,wall,"
             "settle,find_contacts,assemble,solve,check_contacts,update,peak_memory_mib,factorizations,"
-            "symbolic_analyses,status,integrator,substeps,contact_points_per_step,worst_penetration_ratio\n");
+            "factor_updates,symbolic_analyses,status,integrator,substeps,contact_points_per_step,worst_penetration_ratio\n");
   for (const BenchRow& row : rows) {
     const StepProfile& p = row.summary.profile;
     const RunCounters& r = row.summary.run;
     const SolverReport& solver = row.summary.solver;
-    csv.print("{},{},{},{},{},{},{},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:.1f},{},{},{},{},{},{:.1f},{:.5f}\n",
+    csv.print("{},{},{},{},{},{},{},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:.1f},{},{},{},{},{},{},{:.1f},{:.5f}\n",
               row.block_size, row.blocks, r.steps, r.open_close_iterations, r.simulated_time, r.step_cuts,
               r.penalty_raises, p.total, p.settle, p.find_contacts, p.assemble, p.solve, p.check_contacts, p.update,
-              row.peak_mib, r.factorizations, r.symbolic_analyses,
+              row.peak_mib, r.factorizations, r.factor_updates, r.symbolic_analyses,
               row.summary.status == RunStatus::Completed ? "completed" : "failed", to_string(solver.integrator),
               solver.substeps, static_cast<double>(solver.contact_points) / std::max<double>(1.0, static_cast<double>(r.steps)),
               solver.worst_penetration_ratio);
