@@ -6,40 +6,11 @@
 #include <mutex>
 #include <numeric>
 
-#include <cholmod.h>
 #include <omp.h>
 
-#include "forward/low_rank_change.hpp"
+#include "forward/sparse_backend.hpp"
 
 namespace ddafit {
-
-struct SparseSolver::Backend {
-  cholmod_common common;
-  cholmod_factor* factor = nullptr;
-  // The system matrix, kept from solve to solve: allocated afresh for every pass it was freed
-  // at the top of the heap, which glibc then returned to the system and faulted back in
-  // (100,000 page faults on the 411-block wall's 150 steps, a quarter of its run time).
-  cholmod_sparse* matrix = nullptr;
-  Eigen::VectorXd last_solution;
-  double factor_seconds = 0.0;     // wall time of the last factorisation
-  double iteration_seconds = 0.0;  // running mean wall time of one CG iteration
-  std::vector<int> pattern_columns;
-  std::vector<int> pattern_rows;
-  // Factor updates (SolverOptions::update_factorization). `updated` is a simplicial LDL'
-  // copy of `factor` that the rank-one terms of the passes since it was made have changed;
-  // `factored` is the system the factor in use (updated when in_use_updated) stands for.
-  cholmod_factor* updated = nullptr;
-  bool in_use_updated = false;
-  AssembledTerms factored;
-  AssembledTerms current;  // the pass's own terms, while it is being solved on an update
-  bool factored_valid = false;
-  // Of the fill-reducing ordering: the permuted position of each unknown, and for each permuted
-  // column the entries of L on its path to the root of the elimination tree (an update's cost).
-  std::vector<int> inverse_perm;
-  std::vector<double> path_entries;
-  double factor_entries_squared = 0.0;  // sum over L's columns of their entry count squared (a factorisation's cost)
-};
-
 namespace {
 
 // Debian's CHOLMOD 5.12 opens an OpenMP team of 4 threads (CHOLMOD_OMP_NUM_THREADS, fixed
@@ -83,11 +54,8 @@ void remember_terms(const BlockSparseMatrix& k, AssembledTerms& terms) {
   terms.springs = k.springs;
 }
 
-bool refactorize(SparseSolver::Backend& be, SolverCounters& counters, cholmod_sparse* a, int n, std::string& reason);
-bool solve_updated(SparseSolver::Backend& be, const SolverOptions& options, SolverCounters& counters,
-                   const BlockSparseMatrix& k, cholmod_sparse* a, const Eigen::VectorXd& rhs, Eigen::VectorXd& x);
-bool solve_with(cholmod_factor* factor, cholmod_common& common, const Eigen::VectorXd& rhs, Eigen::VectorXd& x);
-bool preconditioned_cg(SparseSolver::Backend& be, const SolverOptions& options, cholmod_sparse* a,
+bool refactorize(SparseBackend& be, SolverCounters& counters, cholmod_sparse* a, int n, std::string& reason);
+bool preconditioned_cg(SparseBackend& be, const SolverOptions& options, cholmod_sparse* a,
                        const Eigen::VectorXd& rhs, Eigen::VectorXd& x, int& iterations);
 
 }  // namespace
@@ -132,7 +100,7 @@ void BlockSparseMatrix::add(int a, int b, const Mat6& m) {
     off_diagonal[it->second] += m;
 }
 
-SparseSolver::SparseSolver(const SolverOptions& options) : options_(options), backend_(std::make_unique<Backend>()) {
+SparseSolver::SparseSolver(const SolverOptions& options) : options_(options), backend_(std::make_unique<SparseBackend>()) {
   cholmod_start(&backend_->common);
   backend_->common.print = 0;
   backend_->common.error_handler = nullptr;
@@ -155,7 +123,7 @@ SparseSolver::~SparseSolver() {
 
 bool SparseSolver::solve(const BlockSparseMatrix& k, const Eigen::VectorXd& rhs, Eigen::VectorXd& x,
                          std::string& reason) {
-  Backend& be = *backend_;
+  SparseBackend& be = *backend_;
   const CholmodOnOneThread one_thread;
   const int nb = k.size;
   const int n = 6 * nb;
@@ -217,9 +185,15 @@ bool SparseSolver::solve(const BlockSparseMatrix& k, const Eigen::VectorXd& rhs,
     }
   }
   if (options_.update_factorization && be.factored_valid && be.factor != nullptr &&
-      static_cast<int>(be.factor->n) == n && solve_updated(be, options_, counters_, k, a, rhs, x)) {
-    be.last_solution = x;
-    return true;
+      static_cast<int>(be.factor->n) == n) {
+    remember_terms(k, be.current);
+    const int rank = solve_updated(be, be.current, a, rhs, x, options_.update_cost_share, options_.update_tolerance);
+    if (rank >= 0) {
+      ++counters_.factor_updates;
+      counters_.update_rank += rank;
+      be.last_solution = x;
+      return true;
+    }
   }
   be.factored_valid = false;
   const bool ok = refactorize(be, counters_, a, n, reason);
@@ -242,159 +216,7 @@ bool SparseSolver::solve(const BlockSparseMatrix& k, const Eigen::VectorXd& rhs,
 
 namespace {
 
-// After a fill-reducing ordering's first factorisation: each unknown's permuted position, and
-// for each column of L the entries on its path to the elimination tree's root. A rank-one
-// update starting at column j rewrites about path_entries[j] entries of L; a factorisation
-// costs about the sum of the squared column counts (Davis & Hager, "Modifying a sparse
-// Cholesky factorization", SIAM J. Matrix Anal. Appl. 20, 1999).
-void note_ordering(SparseSolver::Backend& be) {
-  const cholmod_factor* l = be.factor;
-  const int n = static_cast<int>(l->n);
-  const auto* perm = static_cast<const int*>(l->Perm);
-  be.inverse_perm.assign(n, 0);
-  for (int k = 0; k < n; ++k) be.inverse_perm[perm[k]] = k;
-  std::vector<int> count(n, 1), parent(n, -1);
-  if (l->is_super) {
-    const auto* super = static_cast<const int*>(l->super);
-    const auto* pi = static_cast<const int*>(l->pi);
-    const auto* rows = static_cast<const int*>(l->s);
-    for (size_t sn = 0; sn < l->nsuper; ++sn) {
-      const int k1 = super[sn], k2 = super[sn + 1];
-      const int nrows = pi[sn + 1] - pi[sn];
-      for (int j = k1; j < k2; ++j) {
-        count[j] = nrows - (j - k1);
-        parent[j] = j + 1 < k2 ? j + 1 : (nrows > k2 - k1 ? rows[pi[sn] + (k2 - k1)] : -1);
-      }
-    }
-  } else {
-    const auto* lp = static_cast<const int*>(l->p);
-    const auto* li = static_cast<const int*>(l->i);
-    const auto* lnz = static_cast<const int*>(l->nz);
-    for (int j = 0; j < n; ++j) {
-      count[j] = lnz[j];
-      parent[j] = lnz[j] > 1 ? li[lp[j] + 1] : -1;
-    }
-  }
-  be.path_entries.assign(n, 0.0);
-  be.factor_entries_squared = 0.0;
-  for (int j = n - 1; j >= 0; --j) {
-    be.path_entries[j] = count[j] + (parent[j] > j ? be.path_entries[parent[j]] : 0.0);
-    be.factor_entries_squared += static_cast<double>(count[j]) * count[j];
-  }
-}
-
-bool solve_with(cholmod_factor* factor, cholmod_common& common, const Eigen::VectorXd& rhs, Eigen::VectorXd& x) {
-  const int n = static_cast<int>(rhs.size());
-  cholmod_dense* b = cholmod_allocate_dense(n, 1, n, CHOLMOD_REAL, &common);
-  std::copy(rhs.data(), rhs.data() + n, static_cast<double*>(b->x));
-  cholmod_dense* sol = cholmod_solve(CHOLMOD_A, factor, b, &common);
-  cholmod_free_dense(&b, &common);
-  if (sol == nullptr) return false;
-  x.resize(n);
-  std::copy(static_cast<double*>(sol->x), static_cast<double*>(sol->x) + n, x.data());
-  cholmod_free_dense(&sol, &common);
-  return true;
-}
-
-// Applies the rank-one terms to `factor` (an update: LDL' + C C^T; else a downdate), C's rows
-// in the factor's permuted order as CHOLMOD requires.
-bool apply_terms(SparseSolver::Backend& be, const std::vector<RankOneTerm>& terms, bool update) {
-  if (terms.empty()) return true;
-  const int n = static_cast<int>(be.inverse_perm.size());
-  size_t nnz = 0;
-  for (const RankOneTerm& t : terms) nnz += t.rows.size();
-  cholmod_sparse* c = cholmod_allocate_sparse(n, terms.size(), nnz, 1, 1, 0, CHOLMOD_REAL, &be.common);
-  if (c == nullptr) return false;
-  auto* cp = static_cast<int*>(c->p);
-  auto* ci = static_cast<int*>(c->i);
-  auto* cx = static_cast<double*>(c->x);
-  // Each term's entries in permuted rows, and the terms in the order of their first row:
-  // CHOLMOD applies them eight at a time, and terms that start near each other in the
-  // elimination tree share more of their paths to its root.
-  std::vector<std::vector<std::pair<int, double>>> columns(terms.size());
-  for (size_t k = 0; k < terms.size(); ++k) {
-    for (size_t e = 0; e < terms[k].rows.size(); ++e)
-      columns[k].emplace_back(be.inverse_perm[terms[k].rows[e]], terms[k].values[e]);
-    std::sort(columns[k].begin(), columns[k].end());
-  }
-  std::sort(columns.begin(), columns.end(), [](const auto& x, const auto& y) { return x.front().first < y.front().first; });
-  int pos = 0;
-  for (size_t k = 0; k < columns.size(); ++k) {
-    cp[k] = pos;
-    for (const auto& [row, value] : columns[k]) ci[pos] = row, cx[pos++] = value;
-  }
-  cp[terms.size()] = pos;
-  const int ok = cholmod_updown(update ? 1 : 0, c, be.updated, &be.common);
-  cholmod_free_sparse(&c, &be.common);
-  return ok != 0 && be.common.status == CHOLMOD_OK && be.updated->minor == be.updated->n;
-}
-
-double relative_residual(cholmod_sparse* a, cholmod_common& common, const Eigen::VectorXd& rhs, const Eigen::VectorXd& x,
-                         Eigen::VectorXd& r) {
-  const int n = static_cast<int>(rhs.size());
-  cholmod_dense* xd = cholmod_allocate_dense(n, 1, n, CHOLMOD_REAL, &common);
-  cholmod_dense* rd = cholmod_allocate_dense(n, 1, n, CHOLMOD_REAL, &common);
-  std::copy(x.data(), x.data() + n, static_cast<double*>(xd->x));
-  std::copy(rhs.data(), rhs.data() + n, static_cast<double*>(rd->x));
-  double minus_one[2] = {-1.0, 0.0}, one[2] = {1.0, 0.0};
-  cholmod_sdmult(a, 0, minus_one, one, xd, rd, &common);
-  r = Eigen::Map<Eigen::VectorXd>(static_cast<double*>(rd->x), n);
-  cholmod_free_dense(&xd, &common);
-  cholmod_free_dense(&rd, &common);
-  const double scale = rhs.norm();
-  return scale > 0.0 ? r.norm() / scale : r.norm();
-}
-
-// The pass's system K from the factor of the last one, updated by the rank-one terms of the
-// change (low_rank_change.hpp), when that costs less than the update_cost_share of a
-// factorisation. False: refactorise (`x` is then undefined).
-bool solve_updated(SparseSolver::Backend& be, const SolverOptions& options, SolverCounters& counters,
-                   const BlockSparseMatrix& k, cholmod_sparse* a, const Eigen::VectorXd& rhs, Eigen::VectorXd& x) {
-  if (be.path_entries.empty()) return false;
-  const int n = static_cast<int>(rhs.size());
-  remember_terms(k, be.current);
-  const LowRankChange change = low_rank_change(be.factored, be.current, std::max(8, n / 8));
-  if (!change.representable) return false;
-  double cost = 0.0;
-  for (const auto* terms : {&change.updates, &change.downdates})
-    for (const RankOneTerm& t : *terms) {
-      int first = n;
-      for (const int row : t.rows) first = std::min(first, be.inverse_perm[row]);
-      cost += be.path_entries[first];
-    }
-  if (cost > options.update_cost_share * be.factor_entries_squared) return false;
-  if (change.rank() > 0) {
-    if (!be.in_use_updated) {
-      if (be.updated) cholmod_free_factor(&be.updated, &be.common);
-      be.updated = cholmod_copy_factor(be.factor, &be.common);
-      if (be.updated == nullptr || !cholmod_change_factor(CHOLMOD_REAL, 0, 0, 0, 1, be.updated, &be.common)) return false;
-      be.in_use_updated = true;
-    }
-    // Updates first: the factor stays positive definite in between.
-    if (!apply_terms(be, change.updates, true) || !apply_terms(be, change.downdates, false)) {
-      be.in_use_updated = false;
-      return false;
-    }
-  }
-  cholmod_factor* factor = be.in_use_updated ? be.updated : be.factor;
-  Eigen::VectorXd r, dx;
-  bool good = solve_with(factor, be.common, rhs, x) &&
-              relative_residual(a, be.common, rhs, x, r) <= options.update_tolerance;
-  if (!good && x.allFinite() && solve_with(factor, be.common, r, dx)) {  // one step of refinement
-    x += dx;
-    good = relative_residual(a, be.common, rhs, x, r) <= options.update_tolerance;
-  }
-  if (!good || !x.allFinite()) {
-    be.in_use_updated = false;
-    return false;
-  }
-  ++counters.factor_updates;
-  counters.update_rank += change.rank();
-  std::swap(be.factored, be.current);
-  return true;
-}
-
-bool refactorize(SparseSolver::Backend& be, SolverCounters& counters, cholmod_sparse* a, int n, std::string& reason) {
+bool refactorize(SparseBackend& be, SolverCounters& counters, cholmod_sparse* a, int n, std::string& reason) {
   const auto start = std::chrono::steady_clock::now();
   const auto* ap = static_cast<const int*>(a->p);
   const auto* ai = static_cast<const int*>(a->i);
@@ -433,7 +255,7 @@ bool refactorize(SparseSolver::Backend& be, SolverCounters& counters, cholmod_sp
   return true;
 }
 
-bool preconditioned_cg(SparseSolver::Backend& be, const SolverOptions& options, cholmod_sparse* a,
+bool preconditioned_cg(SparseBackend& be, const SolverOptions& options, cholmod_sparse* a,
                        const Eigen::VectorXd& rhs, Eigen::VectorXd& x, int& iterations) {
   const auto start = std::chrono::steady_clock::now();
   const int n = static_cast<int>(rhs.size());

@@ -1,7 +1,7 @@
 // The global DDA system K D = F as 6x6 blocks (one per free block and per touching
 // pair), and its sparse Cholesky solve with SuiteSparse CHOLMOD. CHOLMOD stays inside
-// sparse_system.cpp (SparseSolver::Backend): nothing that includes this header compiles
-// against SuiteSparse.
+// sparse_system.cpp and factor_update.cpp (sparse_backend.hpp, SparseBackend): nothing that
+// includes this header compiles against SuiteSparse.
 #pragma once
 
 #include <cstdint>
@@ -14,6 +14,8 @@
 #include "forward/low_rank_change.hpp"
 
 namespace ddafit {
+
+struct SparseBackend;  // CHOLMOD's side of SparseSolver (sparse_backend.hpp)
 
 struct BlockSparseMatrix {
   int size = 0;                         // number of free blocks
@@ -98,14 +100,10 @@ class SparseSolver {
 
   const SolverCounters& counters() const { return counters_; }
 
-  // CHOLMOD's workspace, the last factor and its pattern, the CG timings; opaque outside
-  // sparse_system.cpp.
-  struct Backend;
-
  private:
   SolverOptions options_;
   SolverCounters counters_;
-  std::unique_ptr<Backend> backend_;
+  std::unique_ptr<SparseBackend> backend_;
 };
 
 }  // namespace ddafit
