@@ -1,6 +1,6 @@
 // The change between two assemblies of the DDA system, K_now - K_then, as a few rank-one
 // terms, so that a Cholesky factor of K_then can be updated to one of K_now instead of
-// refactorised (sparse_system.cpp). Between two open-close passes of a step the blocks'
+// refactorised (factor_update.cpp). Between two open-close passes of a step the blocks'
 // terms and the contact geometry are the same; only the points that changed state differ: a
 // point that closes adds its normal spring p g g^T (g = d(d_n)/dD over the two blocks'
 // unknowns, point_springs.hpp), one that locks adds its shear spring, one that opens or starts
@@ -53,7 +53,7 @@ struct AssembledTerms {
 // one in `then` only a downdate, one that differs (a stiffer penalty) both. Not representable
 // when the two have different sizes or block pairs (the contact graph changed) or the change
 // has more than `max_rank` terms, or the blocks' own terms differ (another step: a new step
-// length, blocks that turned). sparse_system.cpp checks each solution against K_now itself.
+// length, blocks that turned). factor_update.cpp checks each solution against K_now itself.
 LowRankChange low_rank_change(const AssembledTerms& then, const AssembledTerms& now, int max_rank);
 
 }  // namespace ddafit

@@ -76,7 +76,7 @@ struct SolverOptions {
   // 1e-10 let a collision's momentum drift by 3e-9 over its run.
   double update_tolerance = 1e-12;
   // Refactorise instead when the update's estimated cost is more than this share of a
-  // factorisation's (sparse_system.cpp, note_ordering).
+  // factorisation's (factor_update.cpp, note_ordering).
   // 0.1: the factorisation works in dense BLAS-3 kernels, the update column by column, at
   // about a tenth of the rate per entry (shares 0.02 / 0.05 / 0.1 / 0.2 on the brick walls of
   // docs/performance.md: 0.1 fastest on both).
