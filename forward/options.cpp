@@ -59,6 +59,8 @@ std::string validate_options(const SimulationOptions& o) {
       {"contact_damping_ratio", o.contact_damping_ratio,
        o.contact_damping_ratio >= 0 && o.contact_damping_ratio <= 1e3, "must be in [0, 1000]"},
       {"sleep_time", o.sleep_time, o.sleep_time >= 0.0 && o.sleep_time <= 1e6, "must be in [0, 1e6] s (0 = never)"},
+      {"sleep_speed", o.sleep_speed, o.sleep_speed >= 0.0 && o.sleep_speed <= 1e3,
+       "must be in [0, 1000] m/s (0 = 1 % of rest_speed)"},
       {"contact_passes", static_cast<double>(o.contact_passes), o.contact_passes >= 1 && o.contact_passes <= 64,
        "must be a whole number in [1, 64]"},
       {"substeps", static_cast<double>(o.substeps), o.substeps >= 1 && o.substeps <= 1000,

@@ -108,9 +108,14 @@ struct SimulationOptions {
 
   // control.sleep_time, s: a group of touching blocks at rest this long sleeps (no sweeps,
   // no integration) until a moving block comes within the contact margin (forward/substep/
-  // sleep.hpp; Box2D's islands). At rest: every vertex slower than 1 % of rest_speed. 0 (the
-  // default) never sleeps, the reference every published number was made with.
+  // sleep.hpp; Box2D's islands). 0 (the default) never sleeps, the reference every published
+  // number was made with. Once every free block sleeps, nothing can move again (no load
+  // changes, no block moves to wake one), and the run records the rest of its time at once.
   double sleep_time = 0.0;
+  // control.sleep_speed, m/s: at rest means every vertex of the block slower than this. 0 (the
+  // default) means 1 % of rest_speed. Box2D sleeps bodies under 5 cm/s; a resting Vajont
+  // mass keeps a jitter of 1-10 mm/s from its unconverged sweeps (docs/performance.md).
+  double sleep_speed = 0.0;
 
   // Soft contact constraint: stiffness as a frequency, Hz, and damping ratio. 0 Hz means
   // automatic: an eighth of the substep rate, Box2D's ratio (Box2D also caps it at 30 Hz

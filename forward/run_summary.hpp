@@ -90,6 +90,7 @@ struct SolverReport {
   long fast_steps = 0;          // steps in which a block moved further than the contact margin allows
   long sleeping_block_steps = 0;  // summed over steps: blocks asleep (control.sleep_time)
   long wakes = 0;                 // sleeping groups woken by a moving block
+  double all_asleep_time = -1.0;  // s: when every free block slept and the run recorded its rest at once; -1 never
   // Substep solver, impact groups (forward/substep/converge_impacts.hpp): groups solved
   // directly, groups past 160 points (an impact's solved in pieces, a settling one's left to the
   // sweeps), the pieces' solves, solves undone (energy).

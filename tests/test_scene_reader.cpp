@@ -222,6 +222,8 @@ TEST(SceneReader, BadControlValue) {
                         "(0, 1)"));
   EXPECT_TRUE(FailsWith(kExample + "control: {max_open_close_iterations: 2.5}\n",
                         "control.max_open_close_iterations", "whole number"));
+  // A negative sleep speed would put no block to sleep, silently.
+  EXPECT_TRUE(FailsWith(kExample + "control: {sleep_speed: -0.05}\n", "control.sleep_speed", "[0, 1000]"));
 }
 
 TEST(SceneReader, UnreadableFile) {

@@ -24,9 +24,28 @@ TEST(Sleeping, AStackAtRestSleepsAndStaysWhereItWas) {
   const SimulationResult awake = simulate(substep(stack, 0.0));
   const SimulationResult slept = simulate(substep(stack, 0.5));
   ASSERT_EQ(slept.summary.status, RunStatus::Completed) << slept.summary.message;
-  // Five blocks asleep for most of the 3 s (asleep from about 0.5 s on).
-  EXPECT_GT(slept.summary.solver.sleeping_block_steps, 0.5 * 5 * slept.summary.run.steps);
   EXPECT_EQ(awake.summary.solver.sleeping_block_steps, 0);
+  EXPECT_LT(awake.summary.solver.all_asleep_time, 0.0);
+  // Its five blocks, the only free ones, all sleep from about 0.5 s on (0.5 s at rest after
+  // the quiet start); then nothing can move again and the run stops stepping: it takes at
+  // most half the awake run's steps and still ends at 3 s with a row at every output time.
+  const double asleep = slept.summary.solver.all_asleep_time;
+  EXPECT_GE(asleep, 0.5);
+  EXPECT_LT(asleep, 1.5);
+  EXPECT_LT(slept.summary.run.steps, awake.summary.run.steps / 2);
+  EXPECT_DOUBLE_EQ(slept.summary.run.simulated_time, stack.duration);
+  ASSERT_EQ(slept.history.size(), awake.history.size());
+  for (size_t k = 0; k < slept.history.size(); ++k) {
+    const HistoryRow& row = slept.history[k];
+    EXPECT_NEAR(row.time, awake.history[k].time, 1e-9);
+    if (row.time <= asleep) continue;
+    // Asleep: each point where it was when the last block fell asleep, and still.
+    const HistoryRow& last = slept.history[k - stack.measure.size()];
+    if (last.time >= asleep) {
+      EXPECT_EQ(row.displacement, last.displacement);
+    }
+    EXPECT_EQ(row.velocity, Vec2::Zero());
+  }
   for (size_t p = 0; p < stack.measure.size(); ++p)  // at rest either way: within 0.1 mm
     EXPECT_NEAR(slept.summary.points[p].max_total_displacement, awake.summary.points[p].max_total_displacement, 1e-4);
 }
@@ -66,7 +85,10 @@ TEST(Sleeping, AStandingWallSleepsWithinItsOwnSettling) {
   const SimulationResult awake = simulate(substep(wall, 0.0));
   const SimulationResult slept = simulate(substep(wall, 0.5));
   ASSERT_EQ(slept.summary.status, RunStatus::Completed) << slept.summary.message;
-  EXPECT_GT(slept.summary.solver.sleeping_block_steps, 0);
+  // Its bricks touch one another: one group, which falls asleep at once, and the run then
+  // records its last state to the end without steps.
+  EXPECT_GE(slept.summary.solver.all_asleep_time, 0.5);
+  EXPECT_LT(slept.summary.run.steps, awake.summary.run.steps);
   // The wall settles by some 10 um in the first steps and then stands: within 0.1 mm.
   for (size_t p = 0; p < wall.measure.size(); ++p)
     EXPECT_NEAR(slept.summary.points[p].max_total_displacement, awake.summary.points[p].max_total_displacement, 1e-4);

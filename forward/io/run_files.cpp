@@ -103,6 +103,7 @@ std::string summary_json_text(const std::string& scene_path, const SimulationRes
     j["solver"]["fast_steps"] = solver.fast_steps;
     j["solver"]["sleeping_block_steps"] = solver.sleeping_block_steps;
     j["solver"]["wakes"] = solver.wakes;
+    if (solver.all_asleep_time >= 0.0) j["solver"]["all_asleep_time"] = solver.all_asleep_time;
     j["solver"]["impact_groups"] = solver.impact_groups;
     j["solver"]["impact_groups_too_large"] = solver.impact_groups_too_large;
     j["solver"]["impact_group_pieces"] = solver.impact_group_pieces;

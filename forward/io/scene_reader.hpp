@@ -99,6 +99,7 @@ inline constexpr ControlKey kControlKeys[] = {
     {"rigid_blocks", &SimulationOptions::rigid_blocks},
     {"contact_passes", &SimulationOptions::contact_passes},
     {"sleep_time", &SimulationOptions::sleep_time},
+    {"sleep_speed", &SimulationOptions::sleep_speed},
 };
 
 }  // namespace ddafit::io

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 #include "forward/contact/detect_contacts.hpp"
@@ -294,6 +295,17 @@ std::string quiet_start(SubstepContext& w) {
   return {};
 }
 
+// Every free block asleep (everything_asleep): the blocks stay as they are, so the rest of
+// the run is this state at each output time, recorded without steps.
+void rest_to_the_end(RunRecorder& recorder, double& time, const BlockSystem& s) {
+  while (!recorder.finished(time) && !recorder.interrupted(time, s)) {
+    double landing = -1.0;
+    const double dt = recorder.fit_step(time, std::numeric_limits<double>::infinity(), &landing);
+    time = landing >= 0.0 ? landing : time + dt;
+    recorder.record(time, s);
+  }
+}
+
 }  // namespace
 
 void run_substep(const Scene& scene, BlockSystem& s, RunRecorder& recorder, SimulationSummary& summary) {
@@ -322,7 +334,7 @@ void run_substep(const Scene& scene, BlockSystem& s, RunRecorder& recorder, Simu
   w.ground = GroundTrack(scene.earthquake);
   // Sleeping (sleep.hpp): not under an earthquake, whose load changes every step.
   w.sleep.sleep_time = w.ground.present() ? 0.0 : o.sleep_time;
-  w.sleep.sleep_speed = 0.01 * scene.rest_speed;
+  w.sleep.sleep_speed = o.sleep_speed > 0.0 ? o.sleep_speed : 0.01 * scene.rest_speed;
   w.sleep.rest_time.assign(n, 0.0);
   w.sleep.asleep.assign(n, 0);
   CollideSettings& settings = w.detection.settings;
@@ -397,6 +409,10 @@ void run_substep(const Scene& scene, BlockSystem& s, RunRecorder& recorder, Simu
     if (const std::string problem = check_containment(s); !problem.empty()) {
       fail(problem);
       return;
+    }
+    if (everything_asleep(s, w.sleep)) {
+      report.all_asleep_time = time;
+      rest_to_the_end(recorder, time, s);
     }
   }
   run.simulated_time = time;

@@ -64,6 +64,13 @@ void drop_sleeping_manifolds(const std::vector<ContactManifold>& manifolds, cons
     std::erase_if(colour, [&](int k) { return !masses[manifolds[k].block_a].moves && !masses[manifolds[k].block_b].moves; });
 }
 
+bool everything_asleep(const BlockSystem& s, const SleepState& sleep) {
+  if (!sleep.enabled()) return false;
+  for (size_t b = 0; b < s.blocks.size(); ++b)
+    if (!s.blocks[b].fixed && !sleep.asleep[b]) return false;
+  return true;
+}
+
 void update_sleep(BlockSystem& s, const ContactSet& contacts, const std::vector<double>& reach, double dt,
                   SleepState& sleep) {
   if (!sleep.enabled()) return;

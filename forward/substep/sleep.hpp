@@ -36,6 +36,11 @@ void mask_sleeping(const SleepState& sleep, std::vector<BlockMass>& masses);
 void drop_sleeping_manifolds(const std::vector<ContactManifold>& manifolds, const std::vector<BlockMass>& masses,
                              std::vector<std::vector<int>>& colours);
 
+// Every free block asleep: with no block moving, nothing wakes a group again, and while no
+// load changes with time (no earthquake: sleeping is off under one) the blocks stay where they
+// are to the end of the run.
+bool everything_asleep(const BlockSystem& s, const SleepState& sleep);
+
 // After a measured step of dt: each awake block's time at rest, and the groups whose blocks
 // have all rested sleep_time fall asleep (their velocities set to zero).
 void update_sleep(BlockSystem& s, const ContactSet& contacts, const std::vector<double>& reach, double dt,
