@@ -31,7 +31,7 @@ struct ImpactConvergence {
   // more than four (at four a dropped block came back at 19 %).
   int max_rounds = 8;
   // Substeps after an impact in which its group's blocks are held to a tighter margin (a share
-  // of `closing` and `spent`, converge_impacts.cpp): two steps' worth (run_substep.cpp). After a
+  // of `closing` and `spent`, converge_impacts.cpp): two steps' worth (advance_step.cpp). After a
   // direct solve the warm start brings the impact's impulses back, and the two sweeps leave every
   // contact of a tall stack just under the trigger while the errors add up the column: a block
   // dropped on a stack of ten came back at 12.3 % of its speed; held for one step, 8.5 % (on

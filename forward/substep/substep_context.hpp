@@ -1,4 +1,4 @@
-// The substep solver's step context (forward/substep/run_substep.cpp's stages share it).
+// The substep solver's step context (forward/substep/advance_step.cpp and run_substep.cpp share it).
 #pragma once
 
 #include <vector>
