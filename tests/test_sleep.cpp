@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <tuple>
 
 #include "forward/simulation.hpp"
 #include "verify/cases.hpp"
@@ -93,6 +94,60 @@ TEST(Sleeping, AStandingWallSleepsWithinItsOwnSettling) {
   for (size_t p = 0; p < wall.measure.size(); ++p)
     EXPECT_NEAR(slept.summary.points[p].max_total_displacement, awake.summary.points[p].max_total_displacement, 1e-4);
 }
+
+// A block sliding on a level floor at v0 stops where Coulomb says, at v0^2 / (2 mu g) after
+// t_s = v0 / (mu g). Asleep (sleep_time 0.3 s) it must stop at the same place: sleeping acts
+// only once it has rested, and then the run stops stepping, so every row up to the moment it
+// fell asleep is the awake run's to the bit and every row after is the resting block. Swept
+// over speeds, friction angles and block sizes: a rule that held for one slider could fail
+// for a longer, slower or rougher one.
+using Slide = std::tuple<double, double, double>;  // v0 m/s, friction angle deg, block width m
+class SlideToRest : public ::testing::TestWithParam<Slide> {};
+
+TEST_P(SlideToRest, AsleepWhereCoulombStopsItAndStillThere) {
+  const auto [v0, phi, width] = GetParam();
+  const double g = 9.81, mu = std::tan(phi * M_PI / 180.0);
+  const double stop_time = v0 / (mu * g), stop = v0 * v0 / (2.0 * mu * g);
+  Scene s = verification::incline_scene({});
+  s.blocks.clear();
+  s.interfaces[0].friction_angle = phi;
+  s.interfaces[0].roughness_angle = 0.0;
+  s.duration = stop_time + 1.5;
+  s.blocks.push_back(verification::block("floor", {{-5, -2}, {40, -2}, {40, 0}, {-5, 0}}, true));
+  const double height = 0.5 * width;  // low enough not to tip at mu <= 1 (mu h < w)
+  BlockInput b = verification::block("slider", {{0, 0}, {width, 0}, {width, height}, {0, height}}, false);
+  b.velocity = Vec2(v0, 0.0);
+  s.blocks.push_back(b);
+  s.measure = {{"c", {0.5 * width, 0.5 * height}}};
+  const SimulationResult awake = simulate(substep(s, 0.0));
+  const SimulationResult slept = simulate(substep(s, 0.3));
+  ASSERT_EQ(awake.summary.status, RunStatus::Completed) << awake.summary.message;
+  ASSERT_EQ(slept.summary.status, RunStatus::Completed) << slept.summary.message;
+  // 0.1 mm, as the level landings of test_landing.cpp (the step's error is O(v dt^2)).
+  EXPECT_NEAR(awake.history.back().displacement.x(), stop, 1e-4);
+  EXPECT_NEAR(slept.history.back().displacement.x(), stop, 1e-4);
+  // Asleep 0.3 s after it stopped (its speed falls under 1 % of rest_speed a hair before t_s),
+  // give or take the 10 ms of its first steps at rest.
+  const double asleep = slept.summary.solver.all_asleep_time;
+  EXPECT_GT(asleep, stop_time + 0.3 - 0.02);
+  EXPECT_LT(asleep, stop_time + 0.3 + 0.02);
+  EXPECT_LT(slept.summary.run.steps, awake.summary.run.steps);
+  ASSERT_EQ(slept.history.size(), awake.history.size());
+  for (size_t k = 0; k < slept.history.size(); ++k) {
+    const HistoryRow &row = slept.history[k], &same = awake.history[k];
+    ASSERT_DOUBLE_EQ(row.time, same.time);
+    if (row.time < asleep) {
+      EXPECT_EQ(row.displacement, same.displacement) << "t = " << row.time;
+    } else {
+      EXPECT_EQ(row.velocity, Vec2::Zero()) << "t = " << row.time;
+      EXPECT_NEAR(row.displacement.x(), same.displacement.x(), 1e-6) << "t = " << row.time;
+    }
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Sweep, SlideToRest,
+                         ::testing::Combine(::testing::Values(1.0, 4.0), ::testing::Values(15.0, 30.0, 45.0),
+                                            ::testing::Values(0.5, 2.0)));
 
 }  // namespace
 }  // namespace ddafit

@@ -18,7 +18,6 @@
 namespace ddafit {
 namespace {
 
-
 // Overlap tolerated without push-out, as a fraction of the largest displacement allowed
 // per step: a contact pushed out to exactly zero chatters between touching and not.
 constexpr double kSlopRatio = 1e-3;
@@ -41,9 +40,10 @@ constexpr int kQuietStartSteps = 500;
 constexpr double kQuietStartTolerance = 1e-4;
 
 // Position correction after each step (solve_contacts.hpp): passes; the share of an
-// overlap's excess removed per pass; the overlap it starts at, as a share of the smaller
-// block (under half the 1 % the run is held to, so that a step's new overlap stays below it);
-// and the largest correction per point and pass as a share of the largest move allowed per step.
+// overlap's excess removed per pass (from the overlap it starts at, advance_step.cpp's
+// kDeepOverlap: 0.4 % of the smaller block, under half the 1 % the run is held to, so that a
+// step's new overlap stays below it); and the largest correction per point and pass as a share
+// of the largest move allowed per step.
 // Eight passes of up to half a move: with three of a fifth, a light block jammed between
 // heavy ones kept 1.9 % of its size (Vajont IV degraded) and 1.0 % (V); with eight of a half,
 // 0.47 % and 0.59 %. The passes run only where a relax sweep found a point deep.
@@ -55,7 +55,6 @@ constexpr int kCorrectionPasses = 8;
 constexpr int kCorrectionExtraPasses = 8;
 constexpr double kCorrectionFraction = 0.8;
 constexpr double kCorrectionShare = 0.5;
-
 
 // The normal impulses of the last substep, point by point in manifold order.
 void last_normal_impulses(const std::vector<ContactManifold>& manifolds, std::vector<double>& out) {
