@@ -113,8 +113,9 @@ struct SimulationOptions {
   // changes, no block moves to wake one), and the run records the rest of its time at once.
   double sleep_time = 0.0;
   // control.sleep_speed, m/s: at rest means every vertex of the block slower than this. 0 (the
-  // default) means 1 % of rest_speed. Box2D sleeps bodies under 5 cm/s; a resting Vajont
-  // mass keeps a jitter of 1-10 mm/s from its unconverged sweeps (docs/performance.md).
+  // default) means 1 % of rest_speed. Box2D sleeps bodies under 5 cm/s; a Vajont mass whose
+  // measured points have stopped still moves at 0.1-10 mm/s there, and some of its blocks
+  // faster (docs/performance.md).
   double sleep_speed = 0.0;
 
   // Soft contact constraint: stiffness as a frequency, Hz, and damping ratio. 0 Hz means
