@@ -107,7 +107,7 @@ TEST(FactorUpdate, RankOneTermsAreTheChangeOfK) {
   // Over grids of 2x3 to 6x6 blocks and 1 to 40 springs switched, the terms sum to K_now - K_then
   // to round-off of K's largest entry (1e-12 of it), with one term per switched spring.
   std::mt19937 rng(7);
-  for (const auto [rows, columns] : {std::pair{2, 3}, std::pair{4, 4}, std::pair{6, 6}}) {
+  for (const auto& [rows, columns] : {std::pair{2, 3}, std::pair{4, 4}, std::pair{6, 6}}) {
     const SpringSet s = make_grid(rows, columns, rng);
     for (const int switched : {1, 5, 40}) {
       std::vector<char> then(s.springs.size()), now;
@@ -183,7 +183,9 @@ TEST(FactorUpdate, PassesOnAnUpdatedFactorSolveTheirOwnSystem) {
     EXPECT_EQ(fresh_each.counters().factor_updates, 0);
     EXPECT_EQ(updating.counters().factor_updates + updating.counters().factorizations, 12);
     // On 16 blocks a factorisation is as cheap as any update; from 100 blocks the few changes are updates.
-    if (side >= 10) EXPECT_GE(updating.counters().factor_updates, small_changes - 1) << side * side << " blocks";
+    if (side >= 10) {
+      EXPECT_GE(updating.counters().factor_updates, small_changes - 1) << side * side << " blocks";
+    }
   }
 }
 
