@@ -133,9 +133,9 @@ std::string quiet_start(SubstepContext& w) {
 // the run is this state at each output time, recorded without steps.
 void rest_to_the_end(RunRecorder& recorder, double& time, const BlockSystem& s) {
   while (!recorder.finished(time) && !recorder.interrupted(time, s)) {
-    double landing = -1.0;
-    const double dt = recorder.fit_step(time, std::numeric_limits<double>::infinity(), &landing);
-    time = landing >= 0.0 ? landing : time + dt;
+    double landing = -1.0;  // an unbounded step always lands on the next output time (or the end)
+    recorder.fit_step(time, std::numeric_limits<double>::infinity(), &landing);
+    time = landing;
     recorder.record(time, s);
   }
 }
