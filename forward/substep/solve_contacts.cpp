@@ -15,12 +15,15 @@ namespace {
 // small colours (a few hundred manifolds on Vajont section VII); at the general minimum of
 // 512 the main thread swept them alone while the other waited.
 constexpr long kColourParallelMinimum = 64;
-// Manifolds per share of a colour: a manifold takes 1-16 passes, so equal static halves
-// left one thread waiting for the other.
-constexpr int kColourChunk = 32;
-
 // Runs body(k) for every manifold, colour by colour. Within a colour no two manifolds
 // share a moving block, so the order (and the thread count) does not change the numbers.
+// Each thread takes one contiguous share of a colour (a static schedule). Manifolds are
+// stored by piece pair, so a thread then meets the same neighbourhood of the slide in
+// every colour and every sweep, and the manifolds and block velocities it writes stay in
+// its own core's cache. Handed out in chunks of 32 (a dynamic schedule, before 2026-11-29)
+// they moved between the cores at every sweep: on Vajont section VII degraded the sweeps
+// on two threads were no faster than on one (9.9 s), against 5.5 s now, although a
+// manifold's 1-16 passes leave the static shares unequal (docs/performance.md).
 template <class Body>
 void for_each_coloured(const std::vector<std::vector<int>>& colours, Body&& body) {
   for (int c = 0; c < static_cast<int>(colours.size()); ++c) {
@@ -30,7 +33,7 @@ void for_each_coloured(const std::vector<std::vector<int>>& colours, Body&& body
       for (long k = 0; k < n; ++k) body(members[k]);
       continue;
     }
-#pragma omp parallel for schedule(dynamic, kColourChunk) if (n >= kColourParallelMinimum)
+#pragma omp parallel for schedule(static) if (n >= kColourParallelMinimum)
     for (long k = 0; k < n; ++k) body(members[k]);
   }
 }
