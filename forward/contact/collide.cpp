@@ -160,7 +160,11 @@ std::string collide(const BlockSystem& s, ContactDetection& detection, const std
   const long n = static_cast<long>(pairs.size());
   geometry.resize(pairs.size());
   const std::vector<Vec2> support = supports(s, contacts.manifolds, settings.linear_slop);
-#pragma omp parallel for schedule(static) if (n >= kParallelMinimum)
+  // Handed out in chunks: a pair of boxes that barely overlap costs little, one whose pieces
+  // touch a full manifold, and they are not spread evenly along the sorted pairs. In two
+  // static halves one thread waited for the other (on Vajont section VII degraded's first
+  // 10 s, 4.5 s against 6.7 s; in chunks of 64, 5.6 s each).
+#pragma omp parallel for schedule(dynamic, 64) if (n >= kParallelMinimum)
   for (long k = 0; k < n; ++k) {
     const auto [a, b] = pairs[k];
     const int block_a = shapes.pieces[a].block, block_b = shapes.pieces[b].block;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
+#include <utility>
 
 #include "forward/contact/contact_law.hpp"
 #include "forward/parallel.hpp"
@@ -30,7 +31,7 @@ void sort_histories(ContactSet& contacts) {
   std::vector<SlipHistory> sorted(h.size());
   for (size_t k = 0; k < order.size(); ++k) {
     place[order[k]] = static_cast<int>(k);
-    sorted[k] = h[order[k]];
+    sorted[k] = std::move(h[order[k]]);
   }
   h.swap(sorted);
   for (ContactManifold& m : contacts.manifolds)
@@ -73,7 +74,7 @@ void assign_histories(const BlockSystem& s, ContactSet& contacts, std::vector<Sl
     if (old >= 0) {
       if (carried[old] < 0) {
         carried[old] = static_cast<int>(histories.size());
-        histories.push_back(previous[old]);
+        histories.push_back(std::move(previous[old]));  // its key stays for the searches below
         histories.back().increment = 0.0;
         histories.back().normal_load = 0.0;
       }
