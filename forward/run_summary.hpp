@@ -91,6 +91,7 @@ struct SolverReport {
   long sleeping_block_steps = 0;  // summed over steps: blocks asleep (control.sleep_time)
   long wakes = 0;                 // sleeping groups woken by a moving block
   double all_asleep_time = -1.0;  // s: when every free block slept and the run recorded its rest at once; -1 never
+  long steps_on_one_thread = 0;   // substep solver: steps the thread governor ran on one thread (forward/thread_governor.hpp)
   // Substep solver, impact groups (forward/substep/converge_impacts.hpp): groups solved
   // directly, groups past 160 points (an impact's solved in pieces, a settling one's left to the
   // sweeps), the pieces' solves, solves undone (energy).

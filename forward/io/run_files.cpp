@@ -104,6 +104,7 @@ std::string summary_json_text(const std::string& scene_path, const SimulationRes
     j["solver"]["sleeping_block_steps"] = solver.sleeping_block_steps;
     j["solver"]["wakes"] = solver.wakes;
     if (solver.all_asleep_time >= 0.0) j["solver"]["all_asleep_time"] = solver.all_asleep_time;
+    j["solver"]["steps_on_one_thread"] = solver.steps_on_one_thread;
     j["solver"]["impact_groups"] = solver.impact_groups;
     j["solver"]["impact_groups_too_large"] = solver.impact_groups_too_large;
     j["solver"]["impact_group_pieces"] = solver.impact_group_pieces;

@@ -111,11 +111,13 @@ std::string quiet_start(SubstepContext& w) {
   std::vector<double> before;
   w.settling = true;
   for (int k = 0; k < kQuietStartSteps; ++k) {
+    w.threads.begin_step();
     if (k > 0) find_step_contacts(w);
     last_normal_impulses(w.contacts.manifolds, before);
     for (size_t b = 0; b < s.blocks.size(); ++b)  // held blocks too: a held block's velocity
       if (!was_fixed[b]) s.blocks[b].velocity.setZero();  // still drives its contacts
     advance_step(w, w.scene.max_step, false);
+    w.threads.end_step();
     if (impulse_change(w.contacts.manifolds, before) <= kQuietStartTolerance) break;
   }
   w.settling = false;
@@ -184,6 +186,7 @@ void run_substep(const Scene& scene, BlockSystem& s, RunRecorder& recorder, Simu
     summary.message = "t = 0: " + problem;
     return;
   }
+  const long settling_on_one = w.threads.steps_on_one();  // the quiet start's are not the run's
   EnergyAudit audit = start_energy_audit(s, scene.gravity);
   recorder.start(s);
   double step = scene.max_step;
@@ -199,6 +202,7 @@ void run_substep(const Scene& scene, BlockSystem& s, RunRecorder& recorder, Simu
   };
 
   while (!recorder.finished(time) && !recorder.interrupted(time, s)) {
+    w.threads.begin_step();
     mark_near(w);
     step = choose_step(w, step);
     double landing = -1.0;
@@ -228,6 +232,8 @@ void run_substep(const Scene& scene, BlockSystem& s, RunRecorder& recorder, Simu
       if (largest_move(w) > 0.5 * settings.margin) ++report.fast_steps;
     }
     recorder.record(time, s);
+    w.threads.end_step();
+    report.steps_on_one_thread = w.threads.steps_on_one() - settling_on_one;
     if (report.worst_penetration_ratio > kFailPenetrationRatio) {
       std::ostringstream why;
       why << "an overlap of " << report.worst_penetration << " m between " << report.worst_penetration_at << " is "

@@ -13,6 +13,7 @@
 #include "forward/substep/sleep.hpp"
 #include "forward/substep/solve_contacts.hpp"
 #include "forward/substep/substep_types.hpp"
+#include "forward/thread_governor.hpp"
 
 namespace ddafit {
 
@@ -32,6 +33,7 @@ struct SubstepContext {
   GroundTrack ground;     // the earthquake, if any (forward/earthquake/ground_motion.hpp)
   double time = 0.0;      // s, the start of the step being advanced
   double load_work = 0.0; // J/m: the ground's inertial load's work in the last step, substep by substep
+  ThreadGovernor threads{threads_allowed()};  // how many threads each step uses (thread_governor.hpp)
   bool settling = false;  // the quiet start: no impact groups (converge_impacts.hpp), nothing strikes
 
   ContactDetection detection;

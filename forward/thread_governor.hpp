@@ -1,0 +1,66 @@
+// How many threads the substep solver's loops use, chosen step by step while the run goes.
+// A run's numbers do not depend on it (docs/theory.md §13, "Threads"): only its wall time does.
+#pragma once
+
+#include <functional>
+#include <vector>
+
+namespace ddafit {
+
+// Two threads pay only where a step has enough contacts to share and the second core is free.
+// On Vajont section I degraded (183 blocks, substep) one thread was the faster alone (8.9 s
+// against 9.7-11.4 s on two), and two runs of it started together on two threads each took
+// 126 s apiece, 12x their solo wall: at every loop's barrier each thread waited for one that
+// the other run had displaced from its core. The governor therefore times windows of steps on
+// one thread and on all the run may use, in turn, and takes the faster for the steps that
+// follow; then it times them again, since the machine's load changes. The windows are compared
+// by their median step: an impact group solved in one step (on one thread, whatever the count)
+// makes that step several times dearer, and two or three such steps in a window of 16 made
+// its sum say nothing of the thread count (section VII degraded ran 26-29 % of its steps on one
+// thread by sums, 15 % by medians, of which 6 % are the windows on one thread themselves).
+struct ThreadGovernorSettings {
+  int window_steps = 16;  // steps per timed window
+  int hold_steps = 240;   // steps on the chosen count before timing again
+  // One thread is kept unless all of them take at least this share less time per step: the
+  // second core is then left to whatever else the machine runs.
+  double margin = 0.05;
+};
+
+// The threads a run may use: OpenMP's present maximum (set from --threads), 1 without OpenMP.
+int threads_allowed();
+
+class ThreadGovernor {
+ public:
+  // `most`: the threads the run may use (its --threads, or OpenMP's default). `clock`: seconds,
+  // monotonic (the wall clock; a test passes its own).
+  explicit ThreadGovernor(int most, ThreadGovernorSettings settings = {}, std::function<double()> clock = {});
+  // Restores OpenMP's thread count as it found it, for whatever runs after the run.
+  ~ThreadGovernor();
+  ThreadGovernor(const ThreadGovernor&) = delete;
+  ThreadGovernor& operator=(const ThreadGovernor&) = delete;
+
+  // Before a step: sets and returns the thread count the step is to use.
+  int begin_step();
+  // After it: the step's wall time counts towards the window it ran in.
+  void end_step();
+  // Steps run on one thread / on `most` so far.
+  long steps_on_one() const { return steps_on_one_; }
+  long steps_on_most() const { return steps_on_most_; }
+
+ private:
+  enum class Phase { First, Second, Hold };
+  int most_;
+  int found_;  // OpenMP's thread count when the governor was made
+  ThreadGovernorSettings settings_;
+  std::function<double()> clock_;
+  Phase phase_ = Phase::First;
+  bool most_first_ = true;  // which count the next pair of windows times first
+  int current_ = 1;
+  int steps_in_phase_ = 0;
+  double started_ = 0.0;
+  std::vector<double> seconds_[2];  // each step's wall in the pair's windows: [0] one thread, [1] most
+  long steps_on_one_ = 0, steps_on_most_ = 0;
+  void set_threads(int threads);
+};
+
+}  // namespace ddafit

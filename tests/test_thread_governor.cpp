@@ -1,0 +1,101 @@
+// The thread governor (forward/thread_governor.hpp): it times windows of steps on one thread
+// and on all the run may use, and keeps the faster. Driven here by a clock of the test's own,
+// with a cost per step that depends on the thread count, so the choice is known exactly.
+#include <gtest/gtest.h>
+
+#include <functional>
+
+#include "forward/thread_governor.hpp"
+
+namespace ddafit {
+namespace {
+
+struct Steps {
+  double now = 0.0;
+  long on_one = 0, on_most = 0;
+};
+
+// Runs `count` steps; a step on one thread costs cost(1), on more cost(threads).
+void run_steps(ThreadGovernor& governor, Steps& clock, int count, const std::function<double(int)>& cost) {
+  for (int k = 0; k < count; ++k) {
+    const int threads = governor.begin_step();
+    clock.now += cost(threads);
+    governor.end_step();
+  }
+}
+
+ThreadGovernor make(int most, Steps& clock) {
+  return ThreadGovernor(most, ThreadGovernorSettings{}, [&clock] { return clock.now; });
+}
+
+// Two windows of 16 steps, then 240 on the choice: the first choice holds from step 32 to 271.
+constexpr int kWindow = 16;
+constexpr int kPair = 2 * kWindow;
+constexpr int kHold = 240;
+
+// A step twice as fast on two threads: after the first pair of windows every step is on two.
+TEST(ThreadGovernor, KeepsAllThreadsWhereTheyAreFaster) {
+  Steps clock;
+  ThreadGovernor governor = make(2, clock);
+  run_steps(governor, clock, kPair, [](int t) { return t == 1 ? 1.0 : 0.5; });
+  const long one_before = governor.steps_on_one();
+  EXPECT_EQ(one_before, kWindow);  // the trial's window on one thread
+  run_steps(governor, clock, kHold, [](int t) { return t == 1 ? 1.0 : 0.5; });
+  EXPECT_EQ(governor.steps_on_one(), one_before);
+}
+
+// Two threads slower (the other core is busy, or the scene too small to share): one thread.
+TEST(ThreadGovernor, FallsBackToOneThreadWhereItIsFaster) {
+  Steps clock;
+  ThreadGovernor governor = make(2, clock);
+  run_steps(governor, clock, kPair + kHold, [](int t) { return t == 1 ? 1.0 : 1.2; });
+  EXPECT_EQ(governor.steps_on_most(), kWindow);
+  EXPECT_EQ(governor.steps_on_one(), kPair + kHold - kWindow);
+}
+
+// Within the margin (5 %) one thread is kept: the second core is left to the machine.
+TEST(ThreadGovernor, KeepsOneThreadWhenTwoGainLessThanTheMargin) {
+  Steps clock;
+  ThreadGovernor governor = make(2, clock);
+  run_steps(governor, clock, kPair + kHold, [](int t) { return t == 1 ? 1.0 : 0.97; });
+  EXPECT_EQ(governor.steps_on_most(), kWindow);
+}
+
+// The machine's load changes: two threads pay at first, then another program takes the second
+// core and they do not. The next pair of windows sees it and the run drops to one thread.
+TEST(ThreadGovernor, TimesAgainAndFollowsTheMachine) {
+  Steps clock;
+  ThreadGovernor governor = make(2, clock);
+  run_steps(governor, clock, kPair + kHold, [](int t) { return t == 1 ? 1.0 : 0.5; });
+  const long most_before = governor.steps_on_most();
+  EXPECT_EQ(most_before, kPair + kHold - kWindow);
+  // The next pair times one thread first (the order alternates), then two; then it holds.
+  run_steps(governor, clock, kPair + kHold, [](int t) { return t == 1 ? 1.0 : 3.0; });
+  EXPECT_EQ(governor.steps_on_most() - most_before, kWindow);
+}
+
+// A few dear steps (an impact group, solved on one thread whatever the count) in the window on
+// two threads do not decide: windows are compared by their median step. By their sums, two
+// steps of 10 s among fourteen of 0.5 s (27 s) would lose to sixteen of 1 s.
+TEST(ThreadGovernor, ADearStepOrTwoDoNotDecide) {
+  Steps clock;
+  ThreadGovernor governor = make(2, clock);
+  int step = 0;
+  run_steps(governor, clock, kPair + kHold, [&step](int t) {
+    const bool impact = (step++ % 8) == 3;
+    return t == 1 ? 1.0 : (impact ? 10.0 : 0.5);
+  });
+  EXPECT_EQ(governor.steps_on_one(), kWindow);
+}
+
+// A run allowed one thread never changes it.
+TEST(ThreadGovernor, OneThreadAllowedIsOneThreadUsed) {
+  Steps clock;
+  ThreadGovernor governor = make(1, clock);
+  run_steps(governor, clock, 500, [](int t) { return t == 1 ? 1.0 : 0.1; });
+  EXPECT_EQ(governor.steps_on_one(), 500);
+  EXPECT_EQ(governor.steps_on_most(), 0);
+}
+
+}  // namespace
+}  // namespace ddafit
