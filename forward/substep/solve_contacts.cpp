@@ -1,5 +1,6 @@
 #include "forward/substep/solve_contacts.hpp"
 #include "forward/parallel.hpp"
+#include "forward/substep/coloured_sweep.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -10,33 +11,6 @@
 
 namespace ddafit {
 namespace {
-
-// A colour this large is shared between the threads. Greedy colouring leaves a tail of
-// small colours (a few hundred manifolds on Vajont section VII); at the general minimum of
-// 512 the main thread swept them alone while the other waited.
-constexpr long kColourParallelMinimum = 64;
-// Runs body(k) for every manifold, colour by colour. Within a colour no two manifolds
-// share a moving block, so the order (and the thread count) does not change the numbers.
-// Each thread takes one contiguous share of a colour (a static schedule). Manifolds are
-// stored by piece pair, so a thread then meets the same neighbourhood of the slide in
-// every colour and every sweep, and the manifolds and block velocities it writes stay in
-// its own core's cache. Handed out in chunks of 32 (a dynamic schedule, before 2026-11-29)
-// they moved between the cores at every sweep: on Vajont section VII degraded the sweeps
-// on two threads were no faster than on one (9.9 s), against 5.5 s now, although a
-// manifold's 1-16 passes leave the static shares unequal (docs/performance.md).
-template <class Body>
-void for_each_coloured(const std::vector<std::vector<int>>& colours, Body&& body) {
-  for (int c = 0; c < static_cast<int>(colours.size()); ++c) {
-    const std::vector<int>& members = colours[c];
-    const long n = static_cast<long>(members.size());
-    if (c == kSerialColour) {
-      for (long k = 0; k < n; ++k) body(members[k]);
-      continue;
-    }
-#pragma omp parallel for schedule(static) if (n >= kColourParallelMinimum)
-    for (long k = 0; k < n; ++k) body(members[k]);
-  }
-}
 
 // Position correction: the largest ratio of two free blocks' inverse masses it uses.
 constexpr double kCorrectionMassRatio = 1.0;
@@ -51,26 +25,48 @@ ContactSoftness make_softness(double hertz, double zeta, double h) {
   return {omega / a1, a2 / (1.0 + a2)};
 }
 
+namespace {
+
+// Warm start at one point (warm_start below).
+inline void warm_point(const ContactManifold& m, ContactPoint& p, bool struck, Vec3& va, Vec3& vb, const BlockMass& ma,
+                       const BlockMass& mb) {
+  ImpulseState& i = p.impulse;
+  if (struck && i.normal > std::max(i.carried, 0.0)) {  // the blow's share is not handed on
+    const double resting = std::max(i.carried, 0.0);
+    i.tangent *= resting / i.normal;
+    i.normal = resting;
+  }
+  i.carried = i.normal;
+  apply_impulse(va, vb, ma, mb, p, i.normal * m.normal + i.tangent * m.tangent);
+}
+
+template <int N>
+void warm_batch(std::vector<ContactManifold>& manifolds, const int* ids, bool any_struck, SweepState& st) {
+  ContactManifold* m[N];
+  bool struck[N];
+  int most = 0;
+  for (int i = 0; i < N; ++i) {
+    m[i] = &manifolds[ids[i]];
+    struck[i] = any_struck && (st.struck_now[m[i]->block_a] || st.struck_now[m[i]->block_b]);
+    most = std::max(most, m[i]->point_count);
+  }
+  for (int q = 0; q < most; ++q)
+    for (int i = 0; i < N; ++i)
+      if (q < m[i]->point_count)
+        warm_point(*m[i], m[i]->points[q], struck[i], st.velocity[m[i]->block_a], st.velocity[m[i]->block_b],
+                   st.masses[m[i]->block_a], st.masses[m[i]->block_b]);
+}
+
+constexpr auto kEvery = [](int) { return true; };
+
+}  // namespace
+
 void warm_start(std::vector<ContactManifold>& manifolds, const std::vector<std::vector<int>>& colours,
                 SweepState& st) {
   const bool any_struck = std::find(st.struck_now.begin(), st.struck_now.end(), 1) != st.struck_now.end();
-  for_each_coloured(colours, [&](int k) {
-    ContactManifold& m = manifolds[k];
-    Vec3& va = st.velocity[m.block_a];
-    Vec3& vb = st.velocity[m.block_b];
-    const bool struck = any_struck && (st.struck_now[m.block_a] || st.struck_now[m.block_b]);
-    for (int q = 0; q < m.point_count; ++q) {
-      ContactPoint& p = m.points[q];
-      ImpulseState& i = p.impulse;
-      if (struck && i.normal > std::max(i.carried, 0.0)) {  // the blow's share is not handed on
-        const double resting = std::max(i.carried, 0.0);
-        i.tangent *= resting / i.normal;
-        i.normal = resting;
-      }
-      i.carried = i.normal;
-      apply_impulse(va, vb, st.masses[m.block_a], st.masses[m.block_b], p, i.normal * m.normal + i.tangent * m.tangent);
-    }
-  });
+  sweep_coloured(
+      colours, kEvery, [&](const int* ids) { warm_batch<kSweepBatch>(manifolds, ids, any_struck, st); },
+      [&](int k) { warm_batch<1>(manifolds, &k, any_struck, st); });
   if (any_struck) std::fill(st.struck_now.begin(), st.struck_now.end(), 0);
 }
 
@@ -83,66 +79,75 @@ namespace {
 // quarter less (docs/performance.md).
 constexpr double kManifoldPassTolerance = 1e-2;
 
-// One pass over a manifold's points: the normal impulses with the push-out (or none in the
-// relax sweep), then friction under the Mohr-Coulomb cap. Returns the largest change of an
-// impulse in the pass.
-double manifold_pass(ContactManifold& m, char& deep, const SweepSettings& settings, double inv_h, SweepState& st) {
-  Vec3& va = st.velocity[m.block_a];
-  Vec3& vb = st.velocity[m.block_b];
-  const BlockMass& ma = st.masses[m.block_a];
-  const BlockMass& mb = st.masses[m.block_b];
-  double largest_change = 0.0;
-  for (int q = 0; q < m.point_count; ++q) {
-    ContactPoint& p = m.points[q];
-    // Normal: the gap now, from the step's start and the blocks' moves since.
-    const double gap = current_gap(m, p, st.step_moves);
-    // The push-out of an overlap follows the soft spring (bias rate and mass scale), but
-    // the impulse is not relaxed towards zero as Box2D's soft contact does: that leak
-    // makes the overlap that holds a load F equal F / (m w^2), and with m the effective
-    // mass of a small block under a 200 m thick mass it sank a 3 m triangle 0.9 m into
-    // the bedrock (Vajont section VII stopped at 5.6-23 s; without it the run finishes).
-    double bias = 0.0, mass_scale = 1.0;
-    if (gap > 0.0) {
-      bias = gap * inv_h;  // speculative: may close the gap within the substep, not more
-    } else if (settings.use_bias) {
-      bias = std::max(settings.softness.bias_rate * std::min(0.0, gap + settings.linear_slop),
-                      -settings.max_pushout_speed);
-      mass_scale = settings.softness.mass_scale;
-    }
-    if (!settings.use_bias && gap < -m.deep_overlap) deep = 1;
-    const double vn = normal_rate(m, p, st.velocity);
-    const double change = -p.impulse.normal_mass * mass_scale * (vn + bias);
-    // Contact law: compression only, unless a bond holds tension (tension cut-off).
-    const double total = std::max(p.impulse.normal + change, -p.impulse.tension);
-    const double normal_change = total - p.impulse.normal;
-    apply_impulse(va, vb, ma, mb, p, normal_change * m.normal);
-    p.impulse.normal = total;
-
-    // Friction: the Mohr-Coulomb cap, mu N (seed Eq. 2-3 for mu) plus cohesion while bonded.
-    const double cap = coulomb_cap(m.friction, p.impulse.normal, p.impulse.cohesion);
-    const double vt = m.tangent.dot(velocity_at(vb, p.rb) - velocity_at(va, p.ra));
-    const double tangent = std::clamp(p.impulse.tangent - p.impulse.tangent_mass * vt, -cap, cap);
-    apply_impulse(va, vb, ma, mb, p, (tangent - p.impulse.tangent) * m.tangent);
-    largest_change = std::max({largest_change, std::abs(normal_change), std::abs(tangent - p.impulse.tangent)});
-    p.impulse.tangent = tangent;
+// One point of a pass: the normal impulse with the push-out (or none in the relax sweep),
+// then friction under the Mohr-Coulomb cap. Returns the larger change of its two impulses,
+// judged against its normal impulse.
+inline PassChange point_pass(const ContactManifold& m, ContactPoint& p, char& deep, const SweepSettings& settings,
+                             double inv_h, const SweepState& st, Vec3& va, Vec3& vb, const BlockMass& ma,
+                             const BlockMass& mb) {
+  // Normal: the gap now, from the step's start and the blocks' moves since.
+  const double gap = current_gap(m, p, st.step_moves);
+  // The push-out of an overlap follows the soft spring (bias rate and mass scale), but
+  // the impulse is not relaxed towards zero as Box2D's soft contact does: that leak
+  // makes the overlap that holds a load F equal F / (m w^2), and with m the effective
+  // mass of a small block under a 200 m thick mass it sank a 3 m triangle 0.9 m into
+  // the bedrock (Vajont section VII stopped at 5.6-23 s; without it the run finishes).
+  double bias = 0.0, mass_scale = 1.0;
+  if (gap > 0.0) {
+    bias = gap * inv_h;  // speculative: may close the gap within the substep, not more
+  } else if (settings.use_bias) {
+    bias = std::max(settings.softness.bias_rate * std::min(0.0, gap + settings.linear_slop),
+                    -settings.max_pushout_speed);
+    mass_scale = settings.softness.mass_scale;
   }
-  return largest_change;
+  if (!settings.use_bias && gap < -m.deep_overlap) deep = 1;
+  const double vn = m.normal.dot(velocity_at(vb, p.rb) - velocity_at(va, p.ra));
+  const double change = -p.impulse.normal_mass * mass_scale * (vn + bias);
+  // Contact law: compression only, unless a bond holds tension (tension cut-off).
+  const double total = std::max(p.impulse.normal + change, -p.impulse.tension);
+  const double normal_change = total - p.impulse.normal;
+  apply_impulse(va, vb, ma, mb, p, normal_change * m.normal);
+  p.impulse.normal = total;
+
+  // Friction: the Mohr-Coulomb cap, mu N (seed Eq. 2-3 for mu) plus cohesion while bonded.
+  const double cap = coulomb_cap(m.friction, p.impulse.normal, p.impulse.cohesion);
+  const double vt = m.tangent.dot(velocity_at(vb, p.rb) - velocity_at(va, p.ra));
+  const double tangent = std::clamp(p.impulse.tangent - p.impulse.tangent_mass * vt, -cap, cap);
+  apply_impulse(va, vb, ma, mb, p, (tangent - p.impulse.tangent) * m.tangent);
+  const PassChange result{std::max(std::abs(normal_change), std::abs(tangent - p.impulse.tangent)), std::abs(total)};
+  p.impulse.tangent = tangent;
+  return result;
+}
+
+// N manifolds of one colour (or one manifold) solved at once (coloured_sweep.hpp).
+// The friction impulse at a point below a block's centre turns the block, which moves the
+// normal velocity at both points; one pass leaves that coupling unconverged where an
+// impact's friction should nearly stop the slip (a landing near the friction angle). Local
+// passes are Gauss-Seidel on each manifold alone: the fixed point is the sweep's own,
+// reached in fewer sweeps.
+template <int N>
+void solve_batch(ContactManifold* const* m, char* const* deep, const SweepSettings& settings, double inv_h,
+                 SweepState& st) {
+  Vec3* va[N];
+  Vec3* vb[N];
+  const BlockMass* ma[N];
+  const BlockMass* mb[N];
+  for (int i = 0; i < N; ++i) {
+    va[i] = &st.velocity[m[i]->block_a], vb[i] = &st.velocity[m[i]->block_b];
+    ma[i] = &st.masses[m[i]->block_a], mb[i] = &st.masses[m[i]->block_b];
+  }
+  converge_passes<N>(m, settings.manifold_passes, kManifoldPassTolerance, [&](int i, int q) {
+    return point_pass(*m[i], m[i]->points[q], *deep[i], settings, inv_h, st, *va[i], *vb[i], *ma[i], *mb[i]);
+  });
 }
 
 }  // namespace
 
-// One manifold of a sweep: passes over its points until they agree. The friction impulse
-// at a point below a block's centre turns the block, which moves the normal velocity at
-// both points; one pass leaves that coupling unconverged where an impact's friction should
-// nearly stop the slip (a landing near the friction angle). Local passes are Gauss-Seidel
-// on this manifold alone: the fixed point is the sweep's own, reached in fewer sweeps.
+// One manifold of a sweep: passes over its points until they agree.
 void solve_manifold(ContactManifold& m, char& deep, const SweepSettings& settings, double inv_h, SweepState& st) {
-  for (int pass = 0; pass < settings.manifold_passes; ++pass) {
-    const double change = manifold_pass(m, deep, settings, inv_h, st);
-    double scale = 0.0;
-    for (int q = 0; q < m.point_count; ++q) scale = std::max(scale, std::abs(m.points[q].impulse.normal));
-    if (change <= kManifoldPassTolerance * scale) break;
-  }
+  ContactManifold* const one[1] = {&m};
+  char* const flag[1] = {&deep};
+  solve_batch<1>(one, flag, settings, inv_h, st);
 }
 
 namespace {
@@ -184,8 +189,48 @@ const BlockManifolds& block_manifolds(const std::vector<ContactManifold>& manifo
 void solve_contacts(std::vector<ContactManifold>& manifolds, const std::vector<std::vector<int>>& colours,
                     const SweepSettings& settings, SweepState& st) {
   const double inv_h = 1.0 / settings.h;
-  for_each_coloured(colours, [&](int k) { solve_manifold(manifolds[k], st.deep[k], settings, inv_h, st); });
+  const auto batch = [&](const int* ids) {
+    ContactManifold* m[kSweepBatch];
+    char* deep[kSweepBatch];
+    for (int i = 0; i < kSweepBatch; ++i) m[i] = &manifolds[ids[i]], deep[i] = &st.deep[ids[i]];
+    solve_batch<kSweepBatch>(m, deep, settings, inv_h, st);
+  };
+  sweep_coloured(colours, kEvery, batch, [&](int k) { solve_manifold(manifolds[k], st.deep[k], settings, inv_h, st); });
 }
+
+namespace {
+
+// The push-out at one point (push_out_overlaps): towards bias_rate x its excess over the slop,
+// never pulling. A point without an excess and without a push-out impulse is skipped.
+inline PassChange push_out_point(const ContactManifold& m, ContactPoint& p, const SweepSettings& settings,
+                                 const SweepState& st, Vec3& ua, Vec3& ub, const BlockMass& ma, const BlockMass& mb) {
+  const double excess = std::min(0.0, current_gap(m, p, st.step_moves) + settings.linear_slop);
+  const double target = std::min(-settings.softness.bias_rate * excess, settings.max_pushout_speed);
+  if (target <= 0.0 && p.impulse.push_out == 0.0) return {};
+  const double un = normal_rate(m, p, st.push_velocity);
+  const double total = std::max(p.impulse.push_out + p.impulse.normal_mass * (target - un), 0.0);
+  const double change = total - p.impulse.push_out;
+  apply_impulse(ua, ub, ma, mb, p, change * m.normal);
+  p.impulse.push_out = total;
+  return {std::abs(change), total};
+}
+
+template <int N>
+void push_out_batch(std::vector<ContactManifold>& manifolds, const int* ids, const SweepSettings& settings,
+                    SweepState& st) {
+  ContactManifold* m[N];
+  for (int i = 0; i < N; ++i) {
+    m[i] = &manifolds[ids[i]];
+    for (int q = 0; q < m[i]->point_count; ++q) m[i]->points[q].impulse.push_out = 0.0;
+  }
+  converge_passes<N>(m, settings.manifold_passes, kManifoldPassTolerance, [&](int i, int q) {
+    const ContactManifold& mi = *m[i];
+    return push_out_point(mi, m[i]->points[q], settings, st, st.push_velocity[mi.block_a],
+                          st.push_velocity[mi.block_b], st.masses[mi.block_a], st.masses[mi.block_b]);
+  });
+}
+
+}  // namespace
 
 void push_out_overlaps(std::vector<ContactManifold>& manifolds, const std::vector<std::vector<int>>& colours,
                        const SweepSettings& settings, SweepState& st) {
@@ -204,32 +249,10 @@ void push_out_overlaps(std::vector<ContactManifold>& manifolds, const std::vecto
     for (int q = 0; q < m.point_count; ++q) any |= current_gap(m, m.points[q], st.step_moves) + settings.linear_slop < 0.0;
     st.overlapping[k] = any;
   }
-  for_each_coloured(colours, [&](int k) {
-    if (!st.overlapping[k]) return;
-    ContactManifold& m = manifolds[k];
-    for (int q = 0; q < m.point_count; ++q) m.points[q].impulse.push_out = 0.0;
-    Vec3& ua = st.push_velocity[m.block_a];
-    Vec3& ub = st.push_velocity[m.block_b];
-    const BlockMass& ma = st.masses[m.block_a];
-    const BlockMass& mb = st.masses[m.block_b];
-    for (int pass = 0; pass < settings.manifold_passes; ++pass) {
-      double largest = 0.0, scale = 0.0;
-      for (int q = 0; q < m.point_count; ++q) {
-        ContactPoint& p = m.points[q];
-        const double excess = std::min(0.0, current_gap(m, p, st.step_moves) + settings.linear_slop);
-        const double target = std::min(-settings.softness.bias_rate * excess, settings.max_pushout_speed);
-        if (target <= 0.0 && p.impulse.push_out == 0.0) continue;
-        const double un = normal_rate(m, p, st.push_velocity);
-        const double total = std::max(p.impulse.push_out + p.impulse.normal_mass * (target - un), 0.0);
-        const double change = total - p.impulse.push_out;
-        apply_impulse(ua, ub, ma, mb, p, change * m.normal);
-        p.impulse.push_out = total;
-        largest = std::max(largest, std::abs(change));
-        scale = std::max(scale, total);
-      }
-      if (largest <= kManifoldPassTolerance * scale) break;
-    }
-  });
+  sweep_coloured(
+      colours, [&](int k) { return st.overlapping[k] != 0; },
+      [&](const int* ids) { push_out_batch<kSweepBatch>(manifolds, ids, settings, st); },
+      [&](int k) { push_out_batch<1>(manifolds, &k, settings, st); });
 }
 
 namespace {

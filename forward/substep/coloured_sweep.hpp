@@ -1,0 +1,108 @@
+// How the substep solver's sweeps walk the manifolds (docs/theory.md §13, "Threads"): colour
+// by colour; each thread takes one contiguous share of a colour; and within its share a
+// thread updates a few manifolds at once, their points in turn.
+//
+// Why in batches: a manifold's passes are a chain of dependent updates (each impulse reads
+// the block velocities the one before it wrote), so one manifold at a time leaves the core
+// waiting on each link. The manifolds of one colour share no moving block, so the points of
+// four of them can be updated in turn: four independent chains the core overlaps. Each
+// manifold's own updates, and their order, are those of one manifold at a time, so the
+// numbers are the same to the bit. On Vajont section VII degraded's first 10 s the two relax
+// sweeps took a fifth less time in batches of four than one by one (eight: no better;
+// docs/performance.md).
+#pragma once
+
+#include <omp.h>
+
+#include <algorithm>
+#include <vector>
+
+#include "forward/contact/contact_types.hpp"
+#include "forward/substep/prepare_contacts.hpp"
+
+namespace ddafit {
+
+// A colour this large is shared between the threads. Greedy colouring leaves a tail of
+// small colours (a few hundred manifolds on Vajont section VII); at the general minimum of
+// 512 the main thread swept them alone while the other waited.
+inline constexpr long kColourParallelMinimum = 64;
+// Manifolds updated in turn within a thread's share.
+inline constexpr int kSweepBatch = 4;
+
+// Calls batch(ids) with kSweepBatch manifold ids, or one(id) for a single one, for every
+// manifold k of `colours` with take(k), colour by colour. Within a colour no two manifolds
+// share a moving block, so neither the batches nor the thread count change the numbers;
+// kSerialColour (manifolds that found no free colour) is swept one by one, in order.
+// Each thread takes one contiguous share of a colour (the static schedule of 2026-11-29):
+// manifolds are stored by piece pair, so a thread meets the same neighbourhood of the slide
+// in every colour and every sweep, and the manifolds and velocities it writes stay in its
+// own core's cache. In chunks of 32 handed out dynamically (before) they moved between the
+// cores at every sweep, and two threads were no faster than one (docs/performance.md).
+template <class Take, class Batch, class One>
+void sweep_coloured(const std::vector<std::vector<int>>& colours, Take&& take, Batch&& batch, One&& one) {
+  for (int c = 0; c < static_cast<int>(colours.size()); ++c) {
+    const std::vector<int>& members = colours[c];
+    const long n = static_cast<long>(members.size());
+    if (c == kSerialColour) {
+      for (long i = 0; i < n; ++i)
+        if (take(members[i])) one(members[i]);
+      continue;
+    }
+    const auto share = [&](long from, long to) {
+      int ids[kSweepBatch];
+      int count = 0;
+      for (long i = from; i < to; ++i) {
+        if (!take(members[i])) continue;
+        ids[count++] = members[i];
+        if (count == kSweepBatch) batch(static_cast<const int*>(ids)), count = 0;
+      }
+      for (int i = 0; i < count; ++i) one(ids[i]);
+    };
+    if (n < kColourParallelMinimum) {
+      share(0, n);
+      continue;
+    }
+#pragma omp parallel
+    {
+      const long t = omp_get_thread_num(), threads = omp_get_num_threads();
+      share(n * t / threads, n * (t + 1) / threads);
+    }
+  }
+}
+
+// What one point's update in a pass changed: the largest change of its impulses, and the
+// size of its impulse that the change is judged against.
+struct PassChange {
+  double change = 0.0;
+  double scale = 0.0;
+};
+
+// Passes over N manifolds at once, point q of each in turn (point(i, q) updates point q of
+// manifold i), at most `passes`; a manifold stops once no change of a pass exceeds
+// `tolerance` times the largest scale of that pass (control.contact_passes).
+template <int N, class Point>
+void converge_passes(ContactManifold* const* m, int passes, double tolerance, Point&& point) {
+  bool open[N];
+  for (int i = 0; i < N; ++i) open[i] = true;
+  for (int pass = 0; pass < passes; ++pass) {
+    int count[N];
+    int most = 0;
+    PassChange largest[N];
+    for (int i = 0; i < N; ++i) {
+      count[i] = open[i] ? m[i]->point_count : 0;
+      most = std::max(most, count[i]);
+    }
+    if (most == 0) return;
+    for (int q = 0; q < most; ++q)
+      for (int i = 0; i < N; ++i) {
+        if (q >= count[i]) continue;
+        const PassChange r = point(i, q);
+        largest[i].change = std::max(largest[i].change, r.change);
+        largest[i].scale = std::max(largest[i].scale, r.scale);
+      }
+    for (int i = 0; i < N; ++i)
+      if (open[i] && largest[i].change <= tolerance * largest[i].scale) open[i] = false;
+  }
+}
+
+}  // namespace ddafit
