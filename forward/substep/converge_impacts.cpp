@@ -127,14 +127,20 @@ void converge_group(std::vector<ContactManifold>& manifolds, const BlockManifold
 void mark_struck(const std::vector<ContactManifold>& manifolds, const SweepSettings& relax,
                  const ImpactConvergence& settings, SweepState& st) {
   if (settings.down.squaredNorm() == 0.0 || st.free_velocity.size() != st.velocity.size()) return;
-  for (const ContactManifold& m : manifolds) {
+  // The test in parallel, the marks after it in order (a largest value, so the same either way).
+  const long n = static_cast<long>(manifolds.size());
+  std::vector<char> struck(n, 0);
+#pragma omp parallel for schedule(static) if (n >= kParallelMinimum)
+  for (long k = 0; k < n; ++k) {
+    const ContactManifold& m = manifolds[k];
     if (std::abs(m.normal.dot(settings.down)) < kWeightBearingCosine) continue;
-    bool struck = false;
-    for (int q = 0; q < m.point_count && !struck; ++q)
-      struck = normal_rate(m, m.points[q], st.free_velocity) < -kStruckShare * settings.closing &&
-               impact_residual(m, m.points[q], st, relax.h, st.free_velocity) < 0.0;
-    if (!struck) continue;
-    for (const int b : {m.block_a, m.block_b})
+    for (int q = 0; q < m.point_count && !struck[k]; ++q)
+      struck[k] = normal_rate(m, m.points[q], st.free_velocity) < -kStruckShare * settings.closing &&
+                  impact_residual(m, m.points[q], st, relax.h, st.free_velocity) < 0.0;
+  }
+  for (long k = 0; k < n; ++k) {
+    if (!struck[k]) continue;
+    for (const int b : {manifolds[k].block_a, manifolds[k].block_b})
       if (st.masses[b].moves) st.settling_substeps[b] = std::max(st.settling_substeps[b], settings.settle_substeps);
   }
 }
