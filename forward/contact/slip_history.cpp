@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numeric>
 #include <utility>
 
 #include "forward/contact/contact_law.hpp"
@@ -22,16 +21,23 @@ void refresh_friction(const BlockSystem& s, SlipHistory& h) {
 
 // Sorts the histories by key (the next step finds a face's history by binary search) and
 // points the manifolds at their new places.
+// The keys are sorted beside their places (one key per face: no ties, so the order is the
+// same), not read through the 136-byte histories at every comparison, and the histories are
+// moved into a reserved list rather than one first filled with empty histories. The sort follows
+// nearly every step's assignment (histories are appended in manifold order); on Vajont section
+// VII's first 10 s the assignment took 1.30 s before and 1.22 s after, on one thread, most of it
+// in reading and moving the histories themselves.
 void sort_histories(ContactSet& contacts) {
   std::vector<SlipHistory>& h = contacts.histories;
-  std::vector<int> order(h.size());
-  std::iota(order.begin(), order.end(), 0);
-  std::sort(order.begin(), order.end(), [&](int x, int y) { return h[x].key < h[y].key; });
+  std::vector<std::pair<std::uint64_t, int>> order(h.size());
+  for (size_t k = 0; k < h.size(); ++k) order[k] = {h[k].key, static_cast<int>(k)};
+  std::sort(order.begin(), order.end());
   std::vector<int> place(h.size());
-  std::vector<SlipHistory> sorted(h.size());
+  std::vector<SlipHistory> sorted;
+  sorted.reserve(h.size());
   for (size_t k = 0; k < order.size(); ++k) {
-    place[order[k]] = static_cast<int>(k);
-    sorted[k] = std::move(h[order[k]]);
+    place[order[k].second] = static_cast<int>(k);
+    sorted.push_back(std::move(h[order[k].second]));
   }
   h.swap(sorted);
   for (ContactManifold& m : contacts.manifolds)
