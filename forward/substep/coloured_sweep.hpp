@@ -1,6 +1,6 @@
-// How the substep solver's sweeps walk the manifolds (docs/theory.md §13, "Threads"): colour
-// by colour; each thread takes one contiguous share of a colour; and within its share a
-// thread updates a few manifolds at once, their points in turn.
+// How the substep solver's sweeps walk the manifolds (docs/theory.md §13, "Threads and
+// determinism"): colour by colour; each thread takes one contiguous share of a colour; and
+// within its share a thread updates a few manifolds at once, their points in turn.
 //
 // Why in batches: a manifold's passes are a chain of dependent updates (each impulse reads
 // the block velocities the one before it wrote), so one manifold at a time leaves the core
