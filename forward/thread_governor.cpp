@@ -63,7 +63,7 @@ void ThreadGovernor::end_step() {
   const double seconds = clock_() - started_;
   ++steps_in_phase_;
   if (phase_ == Phase::Hold) {
-    if (steps_in_phase_ >= settings_.hold_steps) phase_ = Phase::First, steps_in_phase_ = 0;
+    if (steps_in_phase_ >= hold_) phase_ = Phase::First, steps_in_phase_ = 0;
     return;
   }
   seconds_[current_ == 1 ? 0 : 1].push_back(seconds);
@@ -73,7 +73,11 @@ void ThreadGovernor::end_step() {
     phase_ = Phase::Second;
     return;
   }
-  set_threads(median(seconds_[1]) < (1.0 - settings_.margin) * median(seconds_[0]) ? most_ : 1);
+  const double one = median(seconds_[0]), all = median(seconds_[1]);
+  set_threads(all < (1.0 - settings_.margin) * one ? most_ : 1);
+  const bool clear_loss = all > settings_.clear_loss * one;
+  hold_ = clear_loss && clear_loss_before_ ? std::min(2 * hold_, settings_.max_hold_steps) : settings_.hold_steps;
+  clear_loss_before_ = clear_loss;
   seconds_[0].clear();
   seconds_[1].clear();
   most_first_ = !most_first_;

@@ -24,6 +24,14 @@ struct ThreadGovernorSettings {
   // One thread is kept unless all of them take at least this share less time per step: the
   // second core is then left to whatever else the machine runs.
   double margin = 0.05;
+  // All threads slower than one by this factor is a clear loss: another program holds the
+  // other core. Each clear loss in a row doubles the hold, up to max_hold_steps, so that the
+  // windows on all threads, each of whose barriers then waits for a displaced thread, are timed
+  // less and less often. Two Vajont section I runs at once spent 304 of their 5003 steps in such
+  // windows at a fixed hold, about half their wall (docs/performance.md, "Two runs at once,
+  // again"). A mild loss (a scene too small to share) keeps hold_steps.
+  double clear_loss = 1.5;
+  int max_hold_steps = 1920;
 };
 
 // The threads a run may use: OpenMP's present maximum (set from --threads), 1 without OpenMP.
@@ -57,6 +65,8 @@ class ThreadGovernor {
   bool most_first_ = true;  // which count the next pair of windows times first
   int current_ = 1;
   int steps_in_phase_ = 0;
+  int hold_ = 0;                    // steps of the present hold
+  bool clear_loss_before_ = false;  // the last pair of windows was a clear loss
   double started_ = 0.0;
   std::vector<double> seconds_[2];  // each step's wall in the pair's windows: [0] one thread, [1] most
   long steps_on_one_ = 0, steps_on_most_ = 0;

@@ -88,6 +88,44 @@ TEST(ThreadGovernor, ADearStepOrTwoDoNotDecide) {
   EXPECT_EQ(governor.steps_on_one(), kWindow);
 }
 
+// Another program holds the other core for the whole run (two Vajont section I runs at once:
+// a step on two threads took about ten times one on one). Each clear loss in a row doubles the
+// hold (240, 480, 960, 1920, 1920 steps), so over section I's 5003 steps the windows on two
+// threads are five, 80 steps, not the nineteen of a fixed hold (304 steps).
+TEST(ThreadGovernor, APersistentClearLossIsTimedLessAndLessOften) {
+  Steps clock;
+  ThreadGovernor governor = make(2, clock);
+  run_steps(governor, clock, 5003, [](int t) { return t == 1 ? 1.0 : 10.0; });
+  EXPECT_EQ(governor.steps_on_most(), 5 * kWindow);
+}
+
+// A mild loss (a scene too small to share: section I alone, two threads 10-25 % slower) keeps
+// the fixed hold, so the run finds two threads again within 272 steps once they pay.
+TEST(ThreadGovernor, AMildLossKeepsTheFixedHold) {
+  Steps clock;
+  ThreadGovernor governor = make(2, clock);
+  run_steps(governor, clock, 5003, [](int t) { return t == 1 ? 1.0 : 1.2; });
+  EXPECT_EQ(governor.steps_on_most(), 19 * kWindow);  // a pair every 272 steps: 19 begin before 5003
+}
+
+// When the other program ends, the next pair of windows sees two threads win and the hold is
+// the fixed one again: after clear losses the run is back on two threads at the next timing.
+TEST(ThreadGovernor, TheBackOffEndsWhenTwoThreadsWinAgain) {
+  Steps clock;
+  ThreadGovernor governor = make(2, clock);
+  run_steps(governor, clock, 1808, [](int t) { return t == 1 ? 1.0 : 10.0; });  // four pairs; a hold of 1920 begins
+  run_steps(governor, clock, 1920, [](int t) { return t == 1 ? 1.0 : 0.5; });   // the hold runs out on one thread
+  const long most_before = governor.steps_on_most();
+  EXPECT_EQ(most_before, 4 * kWindow);
+  run_steps(governor, clock, kPair + kHold, [](int t) { return t == 1 ? 1.0 : 0.5; });
+  EXPECT_EQ(governor.steps_on_most() - most_before, kWindow + kHold);  // its window on two, then the hold
+  // A clear loss now holds 240 steps, not twice the last hold.
+  run_steps(governor, clock, kPair + kHold, [](int t) { return t == 1 ? 1.0 : 10.0; });
+  const long one_before = governor.steps_on_one();
+  run_steps(governor, clock, kPair, [](int t) { return t == 1 ? 1.0 : 0.5; });
+  EXPECT_EQ(governor.steps_on_one() - one_before, kWindow);
+}
+
 // A run allowed one thread never changes it.
 TEST(ThreadGovernor, OneThreadAllowedIsOneThreadUsed) {
   Steps clock;
