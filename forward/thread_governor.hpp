@@ -28,8 +28,8 @@ struct ThreadGovernorSettings {
   // other core. Each clear loss in a row doubles the hold, up to max_hold_steps, so that the
   // windows on all threads, each of whose barriers then waits for a displaced thread, are timed
   // less and less often. Two Vajont section I runs at once spent 304 of their 5003 steps in such
-  // windows at a fixed hold, about half their wall (docs/performance.md, "Two runs at once,
-  // again"). A mild loss (a scene too small to share) keeps hold_steps.
+  // windows at a fixed hold, about a third of their wall (docs/performance.md, "Two runs at
+  // once, again"). A mild loss (a scene too small to share) keeps hold_steps.
   double clear_loss = 1.5;
   int max_hold_steps = 1920;
 };
