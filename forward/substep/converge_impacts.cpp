@@ -259,12 +259,17 @@ ImpactCounts converge_impacts(std::vector<ContactManifold>& manifolds, const Swe
   const auto join = [&](int a, int b) {
     if (st.masses[a].moves && st.masses[b].moves) parent[root_of(parent, a)] = root_of(parent, b);
   };
+  // Each block's manifolds are joined once, however many open manifolds it has: joining a
+  // pair already together changes no root, so the groups and their roots are as before.
+  const std::vector<std::array<int, 2>>& pairs = pair_blocks(manifolds, st);
+  std::vector<char> joined(blocks, 0);
   for (long k = 0; k < n; ++k) {
     if (!open[k]) continue;
-    for (const int b : {manifolds[k].block_a, manifolds[k].block_b}) {
-      if (!st.masses[b].moves) continue;
+    for (const int b : pairs[k]) {
+      if (!st.masses[b].moves || joined[b]) continue;
+      joined[b] = 1;
       for (int j = of_block.first[b]; j < of_block.first[b + 1]; ++j)
-        join(manifolds[of_block.ids[j]].block_a, manifolds[of_block.ids[j]].block_b);
+        join(pairs[of_block.ids[j]][0], pairs[of_block.ids[j]][1]);
     }
   }
   std::vector<std::pair<int, int>> seeds;  // (group root, manifold)

@@ -35,9 +35,11 @@ void prepare_contacts(SubstepContext& ctx, double h, double deep_overlap) {
   const double slop = ctx.detection.settings.linear_slop;
   std::vector<ContactManifold>& manifolds = ctx.contacts.manifolds;
   const long n = static_cast<long>(manifolds.size());
+  ctx.state.pair_blocks.resize(manifolds.size());
 #pragma omp parallel for schedule(static) if (n >= kParallelMinimum)
   for (long k = 0; k < n; ++k) {
     ContactManifold& m = manifolds[k];
+    ctx.state.pair_blocks[k] = {m.block_a, m.block_b};
     const BlockMass& ma = masses[m.block_a];
     const BlockMass& mb = masses[m.block_b];
     const Interface& face = s.interfaces[m.interface];

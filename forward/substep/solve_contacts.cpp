@@ -147,18 +147,18 @@ namespace {
 
 // The manifolds flagged deep and every other manifold of their moving blocks, in order;
 // `involved` flags those blocks.
-std::vector<int> deep_neighbourhood(const std::vector<ContactManifold>& manifolds, const SweepState& st,
+std::vector<int> deep_neighbourhood(const std::vector<ContactManifold>& manifolds, SweepState& st,
                                     std::vector<char>& involved) {
   involved.assign(st.velocity.size(), 0);
+  const std::vector<std::array<int, 2>>& pairs = pair_blocks(manifolds, st);
   bool any = false;
   for (int k = 0; k < static_cast<int>(st.deep.size()); ++k)
-    if (st.deep[k]) involved[manifolds[k].block_a] = involved[manifolds[k].block_b] = 1, any = true;
+    if (st.deep[k]) involved[pairs[k][0]] = involved[pairs[k][1]] = 1, any = true;
   std::vector<int> list;
   if (!any) return list;
-  for (int k = 0; k < static_cast<int>(manifolds.size()); ++k) {
-    const ContactManifold& m = manifolds[k];
-    if ((involved[m.block_a] && st.masses[m.block_a].moves) || (involved[m.block_b] && st.masses[m.block_b].moves))
-      list.push_back(k);
+  for (int k = 0; k < static_cast<int>(pairs.size()); ++k) {
+    const auto [a, b] = pairs[k];
+    if ((involved[a] && st.masses[a].moves) || (involved[b] && st.masses[b].moves)) list.push_back(k);
   }
   return list;
 }
@@ -172,6 +172,14 @@ BlockManifolds::BlockManifolds(const std::vector<ContactManifold>& manifolds, si
   std::vector<int> next(first.begin(), first.end() - 1);
   for (int k = 0; k < static_cast<int>(manifolds.size()); ++k)
     ids[next[manifolds[k].block_a]++] = k, ids[next[manifolds[k].block_b]++] = k;
+}
+
+const std::vector<std::array<int, 2>>& pair_blocks(const std::vector<ContactManifold>& manifolds, SweepState& st) {
+  if (st.pair_blocks.size() != manifolds.size()) {
+    st.pair_blocks.resize(manifolds.size());
+    for (size_t k = 0; k < manifolds.size(); ++k) st.pair_blocks[k] = {manifolds[k].block_a, manifolds[k].block_b};
+  }
+  return st.pair_blocks;
 }
 
 const BlockManifolds& block_manifolds(const std::vector<ContactManifold>& manifolds, SweepState& st) {

@@ -4,6 +4,7 @@
 // have moved, one relax sweep without it so that no push-out velocity is kept.
 #pragma once
 
+#include <array>
 #include <optional>
 #include <vector>
 
@@ -48,6 +49,9 @@ struct SweepState {
   std::vector<Vec3> load_acceleration;  // per block, from loads other than gravity (water); empty if none
   std::vector<Vec3> free_velocity;  // per block: the substep's velocity before any contact impulse
   std::vector<Vec3> push_velocity;  // per block: this substep's push-out (control.split_impulses)
+  // Per manifold: its two blocks (block_a, block_b), set by prepare_contacts. The loops that
+  // scan every manifold for its blocks read this 8-byte pair, not a 576-byte ContactManifold.
+  std::vector<std::array<int, 2>> pair_blocks;
   std::vector<char> deep;  // per manifold: a point overlapped beyond its deep_overlap in a relax sweep of the step
   std::vector<char> overlapping;  // per manifold: a point overlaps beyond the slop (push_out_overlaps' scratch)
   // Built when first needed in a step and kept for its substeps and its position correction
@@ -63,6 +67,9 @@ struct SweepState {
   // carried into the impact, and clears it.
   std::vector<char> struck_now;
 };
+
+// st.pair_blocks, filled from `manifolds` when prepare_contacts has not (a state built by hand).
+const std::vector<std::array<int, 2>>& pair_blocks(const std::vector<ContactManifold>& manifolds, SweepState& st);
 
 // st.of_block, built from `manifolds` if this step has not built it yet.
 const BlockManifolds& block_manifolds(const std::vector<ContactManifold>& manifolds, SweepState& st);
