@@ -63,6 +63,11 @@ TEST(SubstepScenesThreads, OneAndTwoThreadsAgreeBitForBit) {
   }
   EXPECT_EQ(a.summary.solver.contact_points, b.summary.solver.contact_points);
   EXPECT_EQ(a.summary.solver.worst_penetration, b.summary.solver.worst_penetration);
+  // The step's measurement runs in contiguous shares whose worst are taken in order
+  // (advance_step.cpp, measure_contacts): the same pair and time on either count.
+  EXPECT_EQ(a.summary.solver.worst_penetration_at, b.summary.solver.worst_penetration_at);
+  EXPECT_EQ(a.summary.solver.worst_penetration_time, b.summary.solver.worst_penetration_time);
+  EXPECT_EQ(a.summary.solver.unconverged_points, b.summary.solver.unconverged_points);
   std::cout << "[measured] threads: " << compared << " of " << a.history.size() << " rows compared, " << mismatches
             << " differ; mean contact points per step " << a.summary.solver.contact_points / std::max(1L, a.summary.run.steps)
             << "\n";

@@ -3,8 +3,11 @@
 #include <algorithm>
 #include <cmath>
 
+#include <omp.h>
+
 #include "forward/contact/detect_contacts.hpp"
 #include "forward/contact/overlap.hpp"
+#include "forward/parallel.hpp"
 #include "forward/run_record.hpp"
 #include "forward/substep/block_stress.hpp"
 #include "forward/substep/converge_impacts.hpp"
@@ -52,15 +55,36 @@ constexpr int kImpactSettleSteps = 2;
 void measure_contacts(SubstepContext& w, double time, double converged_speed) {
   const BlockSystem& s = w.system;
   SolverReport& report = w.report;
-  for (const ContactManifold& m : w.contacts.manifolds) {
-    for (int q = 0; q < m.point_count; ++q) {
-      const ContactPoint& p = m.points[q];
-      const double gap = current_gap(m, p, w.state.step_moves);
-      const double vn = normal_rate(m, p, w.state.velocity);
-      if (gap < 0.0 && vn < -converged_speed) ++report.unconverged_points;
-      w.worst.note(s, m, -gap, time);
+  const std::vector<ContactManifold>& manifolds = w.contacts.manifolds;
+  const long n = static_cast<long>(manifolds.size());
+  // Each thread measures one contiguous share, in order, from the worst so far; the shares'
+  // worst are then taken in order, each only if strictly worse, so the first of equal
+  // overlaps is kept on any number of threads, as on one.
+  const int most = n >= kParallelMinimum ? omp_get_max_threads() : 1;
+  std::vector<WorstOverlap> worst(most, w.worst);
+  std::vector<long> unconverged(most, 0), points(most, 0);
+  int used = 1;
+#pragma omp parallel num_threads(most) if (most > 1)
+  {
+    const int t = omp_get_thread_num(), threads = omp_get_num_threads();
+#pragma omp single
+    used = threads;
+    for (long k = n * t / threads; k < n * (t + 1) / threads; ++k) {
+      const ContactManifold& m = manifolds[k];
+      for (int q = 0; q < m.point_count; ++q) {
+        const ContactPoint& p = m.points[q];
+        const double gap = current_gap(m, p, w.state.step_moves);
+        const double vn = normal_rate(m, p, w.state.velocity);
+        if (gap < 0.0 && vn < -converged_speed) ++unconverged[t];
+        worst[t].note(s, m, -gap, time);
+      }
+      points[t] += m.point_count;
     }
-    report.contact_points += m.point_count;
+  }
+  for (int t = 0; t < used; ++t) {
+    if (worst[t].ratio > w.worst.ratio) w.worst = worst[t];
+    report.unconverged_points += unconverged[t];
+    report.contact_points += points[t];
   }
   report_overlap(s, w.worst, report);
 }
