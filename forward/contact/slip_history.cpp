@@ -1,6 +1,7 @@
 #include "forward/contact/slip_history.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <utility>
 
@@ -19,29 +20,18 @@ void refresh_friction(const BlockSystem& s, SlipHistory& h) {
   h.settled = friction_law_settled(face, {h.slip, h.slip_rate, h.critical_distance});
 }
 
-// Sorts the histories by key (the next step finds a face's history by binary search) and
-// points the manifolds at their new places.
-// The keys are sorted beside their places (one key per face: no ties, so the order is the
-// same), not read through the 136-byte histories at every comparison, and the histories are
-// moved into a reserved list rather than one first filled with empty histories. The sort follows
-// nearly every step's assignment (histories are appended in manifold order); on Vajont section
-// VII's first 10 s the assignment took 1.30 s before and 1.22 s after, on one thread, most of it
-// in reading and moving the histories themselves.
-void sort_histories(ContactSet& contacts) {
-  std::vector<SlipHistory>& h = contacts.histories;
-  std::vector<std::pair<std::uint64_t, int>> order(h.size());
-  for (size_t k = 0; k < h.size(); ++k) order[k] = {h[k].key, static_cast<int>(k)};
-  std::sort(order.begin(), order.end());
-  std::vector<int> place(h.size());
-  std::vector<SlipHistory> sorted;
-  sorted.reserve(h.size());
-  for (size_t k = 0; k < order.size(); ++k) {
-    place[order[k].second] = static_cast<int>(k);
-    sorted.push_back(std::move(h[order[k].second]));
-  }
-  h.swap(sorted);
-  for (ContactManifold& m : contacts.manifolds)
-    if (m.history >= 0) m.history = place[m.history];
+// A new history for the face of manifold m, with no slip.
+SlipHistory fresh_history(const BlockSystem& s, const ContactSet& contacts, const ContactManifold& m) {
+  SlipHistory h;
+  h.key = m.face_key;
+  h.interface = m.interface;
+  h.face_length = block_length_along(s, m.overriding_block, m.tangent);
+  h.critical_distance = critical_distance(s.interfaces[m.interface], h.face_length);
+  if (m.interface < static_cast<int>(contacts.shear_bands.size()) && !contacts.shear_bands[m.interface].empty())
+    laws::start_column(contacts.shear_bands[m.interface], h.band_column);
+  refresh_friction(s, h);
+  h.changed = true;
+  return h;
 }
 
 // Thermal pressurization (laws/thermal_pressurization.hpp): the face's effective normal
@@ -57,60 +47,81 @@ void heat_shear_band(const BlockSystem& s, const ContactSet& contacts, SlipHisto
 
 }  // namespace
 
+// In four passes, so that the 136-byte histories move once, in parallel, straight to their
+// sorted places: (1) each manifold's history of the last step, by key where collide() found
+// none (parallel); (2) in manifold order, the slot of each face in use, a carried history's
+// at its first manifold and a new face's at the first manifold with its key (integers only);
+// (3) the slots' places in key order (one key per face: no ties); (4) each history moved or
+// made in its place (parallel). The same histories, in the same order, as appending them in
+// manifold order and sorting them after, which took 1.2 s of Vajont section VII's first 10 s
+// on one thread, most of it moving the histories twice.
 void assign_histories(const BlockSystem& s, ContactSet& contacts, std::vector<SlipHistory>& previous) {
   previous.swap(contacts.histories);
   std::vector<SlipHistory>& histories = contacts.histories;
-  histories.clear();
-  std::vector<int> carried(previous.size(), -1);     // previous history -> this step's
-  std::vector<std::pair<std::uint64_t, int>> fresh;  // faces new in this step -> this step's
-  bool in_order = true;
-  for (ContactManifold& m : contacts.manifolds) {
-    if (m.interface < 0) {
-      m.history = -1;
-      continue;
-    }
+  std::vector<ContactManifold>& manifolds = contacts.manifolds;
+  const long n = static_cast<long>(manifolds.size());
+#pragma omp parallel for schedule(static) if (n >= kParallelMinimum)
+  for (long k = 0; k < n; ++k) {
+    ContactManifold& m = manifolds[k];
     // m.history is the last step's history of the same pair and face, if collide() found
     // one; otherwise the face may have touched another block (a joint crossed).
-    int old = m.history;
-    if (old < 0) {
-      const auto it = std::lower_bound(previous.begin(), previous.end(), m.face_key,
-                                       [](const SlipHistory& h, std::uint64_t key) { return h.key < key; });
-      if (it != previous.end() && it->key == m.face_key) old = static_cast<int>(it - previous.begin());
-    }
-    if (old >= 0) {
-      if (carried[old] < 0) {
-        carried[old] = static_cast<int>(histories.size());
-        histories.push_back(std::move(previous[old]));  // its key stays for the searches below
-        histories.back().increment = 0.0;
-        histories.back().normal_load = 0.0;
-      }
+    if (m.interface < 0 || m.history >= 0) continue;
+    const auto it = std::lower_bound(previous.begin(), previous.end(), m.face_key,
+                                     [](const SlipHistory& h, std::uint64_t key) { return h.key < key; });
+    if (it != previous.end() && it->key == m.face_key) m.history = static_cast<int>(it - previous.begin());
+  }
+  std::vector<int> carried(previous.size(), -1);     // previous history -> slot
+  std::vector<std::pair<std::uint64_t, int>> fresh;  // faces new in this step -> slot
+  std::vector<int> source;                           // per slot: its previous history, or -1 - its manifold
+  std::vector<std::pair<std::uint64_t, int>> order;  // per slot: (key, slot)
+  bool in_order = true;
+  const auto add_slot = [&](std::uint64_t key, int from) {
+    if (!order.empty() && order.back().first > key) in_order = false;
+    order.emplace_back(key, static_cast<int>(source.size()));
+    source.push_back(from);
+    return static_cast<int>(source.size()) - 1;
+  };
+  for (long k = 0; k < n; ++k) {
+    ContactManifold& m = manifolds[k];
+    if (m.interface < 0) {
+      m.history = -1;
+    } else if (const int old = m.history; old >= 0) {
+      if (carried[old] < 0) carried[old] = add_slot(previous[old].key, old);
       m.history = carried[old];
     } else {
       const auto same = std::find_if(fresh.begin(), fresh.end(), [&](const auto& f) { return f.first == m.face_key; });
       if (same != fresh.end()) {
         m.history = same->second;
       } else {
-        SlipHistory h;
-        h.key = m.face_key;
-        h.interface = m.interface;
-        h.face_length = block_length_along(s, m.overriding_block, m.tangent);
-        h.critical_distance = critical_distance(s.interfaces[m.interface], h.face_length);
-        if (m.interface < static_cast<int>(contacts.shear_bands.size()) && !contacts.shear_bands[m.interface].empty())
-          laws::start_column(contacts.shear_bands[m.interface], h.band_column);
-        refresh_friction(s, h);
-        h.changed = true;
-        m.history = static_cast<int>(histories.size());
+        m.history = add_slot(m.face_key, -1 - static_cast<int>(k));
         fresh.emplace_back(m.face_key, m.history);
-        histories.push_back(h);
       }
     }
-    if (histories.size() > 1 && m.history == static_cast<int>(histories.size()) - 1 &&
-        histories[m.history - 1].key > histories[m.history].key)
-      in_order = false;
   }
-  if (!in_order) sort_histories(contacts);
-  for (ContactManifold& m : contacts.manifolds)
-    if (m.history >= 0) m.friction = histories[m.history].friction;
+  if (!in_order) std::sort(order.begin(), order.end());
+  const long slots = static_cast<long>(source.size());
+  std::vector<int> place(slots);
+  for (long i = 0; i < slots; ++i) place[order[i].second] = static_cast<int>(i);
+  histories.resize(slots);  // every place is assigned below
+#pragma omp parallel for schedule(static) if (slots >= kParallelMinimum)
+  for (long i = 0; i < slots; ++i) {
+    const int slot = order[i].second;
+    SlipHistory& h = histories[i];
+    if (source[slot] >= 0) {
+      h = std::move(previous[source[slot]]);
+      h.increment = 0.0;
+      h.normal_load = 0.0;
+    } else {
+      h = fresh_history(s, contacts, manifolds[-1 - source[slot]]);
+    }
+  }
+#pragma omp parallel for schedule(static) if (n >= kParallelMinimum)
+  for (long k = 0; k < n; ++k) {
+    ContactManifold& m = manifolds[k];
+    if (m.history < 0) continue;
+    m.history = place[m.history];
+    m.friction = histories[m.history].friction;
+  }
 }
 
 void prepare_shear_bands(const BlockSystem& s, double duration, ContactSet& contacts) {
@@ -133,13 +144,34 @@ void reset_histories(const BlockSystem& s, ContactSet& contacts) {
 }
 
 void advance_histories(const BlockSystem& s, ContactSet& contacts, double duration) {
-  for (const ContactManifold& m : contacts.manifolds)
-    if (m.history >= 0)
+  const long manifolds_n = static_cast<long>(contacts.manifolds.size());
+  const bool bands = std::any_of(contacts.shear_bands.begin(), contacts.shear_bands.end(),
+                                 [](const laws::DiffusionGrid& g) { return !g.empty(); });
+  if (bands || manifolds_n < kParallelMinimum) {
+    for (const ContactManifold& m : contacts.manifolds)
+      if (m.history >= 0)
+        for (int q = 0; q < m.point_count; ++q) {
+          SlipHistory& h = contacts.histories[m.history];
+          gather_slip(h, m.points[q].slip);
+          if (!h.band_column.empty()) h.normal_load += m.points[q].normal_load;
+        }
+  } else {
+    // Without shear bands a face takes only the largest slip of its points (gather_slip), the
+    // same in any order: the manifolds are read in parallel and each face's largest kept by a
+    // compare-and-swap that only ever raises it.
+#pragma omp parallel for schedule(static)
+    for (long k = 0; k < manifolds_n; ++k) {
+      const ContactManifold& m = contacts.manifolds[k];
+      if (m.history < 0) continue;
+      std::atomic_ref<double> increment(contacts.histories[m.history].increment);
       for (int q = 0; q < m.point_count; ++q) {
-        SlipHistory& h = contacts.histories[m.history];
-        gather_slip(h, m.points[q].slip);
-        if (!h.band_column.empty()) h.normal_load += m.points[q].normal_load;
+        const double slip = m.points[q].slip;
+        double now = increment.load(std::memory_order_relaxed);
+        while (slip > now && !increment.compare_exchange_weak(now, slip, std::memory_order_relaxed)) {
+        }
       }
+    }
+  }
   // Each face's law on its own: parallel, and the same numbers on any thread count.
   std::vector<SlipHistory>& histories = contacts.histories;
   const long n = static_cast<long>(histories.size());
