@@ -121,17 +121,21 @@ inline PassChange point_pass(const ContactManifold& m, ContactPoint& p, char& de
 template <int N>
 void solve_batch(ContactManifold* const* m, char* const* deep, const SweepSettings& settings, double inv_h,
                  SweepState& st) {
-  Vec3* va[N];
-  Vec3* vb[N];
-  const BlockMass* ma[N];
-  const BlockMass* mb[N];
+  // The blocks' velocities are held in locals through the passes and stored once: no two
+  // manifolds of a batch share a moving block, and a fixed block's velocity never changes.
+  Vec3 va[N], vb[N];
+  BlockMass ma[N], mb[N];
   for (int i = 0; i < N; ++i) {
-    va[i] = &st.velocity[m[i]->block_a], vb[i] = &st.velocity[m[i]->block_b];
-    ma[i] = &st.masses[m[i]->block_a], mb[i] = &st.masses[m[i]->block_b];
+    va[i] = st.velocity[m[i]->block_a], vb[i] = st.velocity[m[i]->block_b];
+    ma[i] = st.masses[m[i]->block_a], mb[i] = st.masses[m[i]->block_b];
   }
   converge_passes<N>(m, settings.manifold_passes, kManifoldPassTolerance, [&](int i, int q) {
-    return point_pass(*m[i], m[i]->points[q], *deep[i], settings, inv_h, st, *va[i], *vb[i], *ma[i], *mb[i]);
+    return point_pass(*m[i], m[i]->points[q], *deep[i], settings, inv_h, st, va[i], vb[i], ma[i], mb[i]);
   });
+  for (int i = 0; i < N; ++i) {
+    if (ma[i].moves) st.velocity[m[i]->block_a] = va[i];
+    if (mb[i].moves) st.velocity[m[i]->block_b] = vb[i];
+  }
 }
 
 }  // namespace
