@@ -24,8 +24,8 @@ Row make_row(const std::vector<double>& separations, double deep_overlap) {
   const int blocks = static_cast<int>(separations.size()) + 1;
   row.state.velocity.assign(blocks, Vec3::Zero());
   row.state.step_moves.assign(blocks, Vec3::Zero());
-  row.state.masses.assign(blocks, BlockMass{1.0, 1.0, true});
-  row.state.masses.back() = BlockMass{};  // fixed
+  row.state.masses.assign(blocks - 1, BlockMass{1.0, 1.0, true});
+  row.state.masses.push_back(BlockMass{});  // fixed
   for (int k = 0; k + 1 < blocks; ++k) {
     ContactManifold m;
     m.block_a = k;
