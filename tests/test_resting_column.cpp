@@ -42,7 +42,10 @@ Scene column_scene(int courses, int per_course, double w, StepSetting setting, b
     double x = 0.0;
     for (int k = 0; k < per_course + (odd ? 1 : 0); ++k) {
       const double length = odd && (k == 0 || k == per_course) ? 0.5 * w : w;
-      s.blocks.push_back(box_block("b" + std::to_string(c) + "_" + std::to_string(k), {x, c * h}, length, h, false));
+      // Appended piece by piece: GCC 12 warns falsely (-Wrestrict) on "b" + std::to_string(c).
+      std::string name = "b";
+      name += std::to_string(c) + "_" + std::to_string(k);
+      s.blocks.push_back(box_block(name, {x, c * h}, length, h, false));
       x += length;
     }
   }
