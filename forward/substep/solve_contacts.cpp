@@ -94,7 +94,7 @@ inline PassChange point_pass(const ContactManifold& m, ContactPoint& p, char& de
     mass_scale = settings.softness.mass_scale;
   }
   if (!settings.use_bias && gap < -m.deep_overlap) deep = 1;
-  const double vn = m.normal.dot(velocity_at(vb, p.rb) - velocity_at(va, p.ra));
+  const double vn = relative_rate(m.normal, p, va, vb);
   const double change = -p.impulse.normal_mass * mass_scale * (vn + bias);
   // Contact law: compression only, unless a bond holds tension (tension cut-off).
   const double total = std::max(p.impulse.normal + change, -p.impulse.tension);
@@ -104,7 +104,7 @@ inline PassChange point_pass(const ContactManifold& m, ContactPoint& p, char& de
 
   // Friction: the Mohr-Coulomb cap, mu N (seed Eq. 2-3 for mu) plus cohesion while bonded.
   const double cap = coulomb_cap(m.friction, p.impulse.normal, p.impulse.cohesion);
-  const double vt = m.tangent.dot(velocity_at(vb, p.rb) - velocity_at(va, p.ra));
+  const double vt = relative_rate(m.tangent, p, va, vb);
   const double tangent = std::clamp(p.impulse.tangent - p.impulse.tangent_mass * vt, -cap, cap);
   apply_impulse(va, vb, ma, mb, p, (tangent - p.impulse.tangent) * m.tangent);
   const PassChange result{std::max(std::abs(normal_change), std::abs(tangent - p.impulse.tangent)), std::abs(total)};
@@ -355,7 +355,7 @@ void advance_slip(const BlockSystem& s, const std::vector<Vec3>& moves, double h
         p.impulse.cohesion = p.impulse.tension = 0.0;
         continue;
       }
-      p.slip = std::abs(m.tangent.dot(velocity_at(moves[m.block_b], p.rb) - velocity_at(moves[m.block_a], p.ra)));
+      p.slip = std::abs(relative_rate(m.tangent, p, moves[m.block_a], moves[m.block_b]));
       p.normal_load = h > 0.0 ? std::max(p.impulse.normal, 0.0) / h : 0.0;
       if (p.bonded && std::abs(p.impulse.tangent) >= 0.999 * coulomb_cap(m.friction, p.impulse.normal, p.impulse.cohesion)) {
         break_bond(p);  // sliding

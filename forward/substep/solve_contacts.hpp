@@ -165,10 +165,16 @@ void correct_positions(const std::vector<ContactManifold>& manifolds, const Posi
 // that follows; a bond is lost once its point slides or opens (contact_law.hpp).
 void advance_slip(const BlockSystem& system, const std::vector<Vec3>& moves, double h, ContactSet& contacts);
 
+// Block b's rate (or move) relative to block a's at the point, along `direction`, from the two
+// blocks' rates: velocities (vx, vy, w) or moves (dx, dy, dtheta).
+inline double relative_rate(const Vec2& direction, const ContactPoint& p, const Vec3& rate_a, const Vec3& rate_b) {
+  return direction.dot(velocity_at(rate_b, p.rb) - velocity_at(rate_a, p.ra));
+}
+
 // Block b's rate (or move) relative to block a's at the point, along the normal: > 0 opening.
-// `rates` per block: velocities (vx, vy, w) or moves (dx, dy, dtheta).
+// `rates` per block.
 inline double normal_rate(const ContactManifold& m, const ContactPoint& p, const std::vector<Vec3>& rates) {
-  return m.normal.dot(velocity_at(rates[m.block_b], p.rb) - velocity_at(rates[m.block_a], p.ra));
+  return relative_rate(m.normal, p, rates[m.block_a], rates[m.block_b]);
 }
 
 // The gap of a point now: its gap at the start of the step plus the relative move of the
