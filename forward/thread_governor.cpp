@@ -63,6 +63,10 @@ void ThreadGovernor::end_step() {
   const double seconds = clock_() - started_;
   ++steps_in_phase_;
   if (phase_ == Phase::Hold) {
+    if (current_ == most_) {
+      slow_in_row_ = seconds > settings_.slow_factor * most_median_ ? slow_in_row_ + 1 : 0;
+      if (slow_in_row_ >= settings_.slow_steps) clear_win_before_ = false, hold_ = 0;  // re-time now
+    }
     if (steps_in_phase_ >= hold_) phase_ = Phase::First, steps_in_phase_ = 0;
     return;
   }
@@ -75,9 +79,13 @@ void ThreadGovernor::end_step() {
   }
   const double one = median(seconds_[0]), all = median(seconds_[1]);
   set_threads(all < (1.0 - settings_.margin) * one ? most_ : 1);
-  const bool clear_loss = all > settings_.clear_loss * one;
-  hold_ = clear_loss && clear_loss_before_ ? std::min(2 * hold_, settings_.max_hold_steps) : settings_.hold_steps;
+  const bool clear_loss = all > settings_.clear_loss * one, clear_win = one > settings_.clear_win * all;
+  const bool in_a_row = (clear_loss && clear_loss_before_) || (clear_win && clear_win_before_);
+  hold_ = in_a_row ? std::min(2 * hold_, settings_.max_hold_steps) : settings_.hold_steps;
   clear_loss_before_ = clear_loss;
+  clear_win_before_ = clear_win;
+  most_median_ = all;
+  slow_in_row_ = 0;
   seconds_[0].clear();
   seconds_[1].clear();
   most_first_ = !most_first_;

@@ -32,6 +32,18 @@ struct ThreadGovernorSettings {
   // once, again"). A mild loss (a scene too small to share) keeps hold_steps.
   double clear_loss = 1.5;
   int max_hold_steps = 1920;
+  // All threads faster than one by this factor is a clear win, and each clear win in a row
+  // doubles the hold as well, up to max_hold_steps: the windows on one thread are then a
+  // growing share of nothing. On Vajont section VII degraded two threads ran a step 1.4-2.1x
+  // faster than one in most pairs of windows (1.1-1.2x in two of eleven), and at a fixed hold
+  // 16 of every 272 steps ran on one thread, about 3 % of the wall (docs/performance.md).
+  double clear_win = 1.25;
+  // A long hold on all threads ends early once slow_steps steps in a row each take more than
+  // slow_factor times the window's median on all threads: another program has taken a core, and
+  // the run re-times rather than waiting at every barrier for the rest of the hold. A dear step
+  // or two (an impact group) is no run of them.
+  double slow_factor = 2.0;
+  int slow_steps = 8;
 };
 
 // The threads a run may use: OpenMP's present maximum (set from --threads), 1 without OpenMP.
@@ -67,6 +79,9 @@ class ThreadGovernor {
   int steps_in_phase_ = 0;
   int hold_ = 0;                    // steps of the present hold
   bool clear_loss_before_ = false;  // the last pair of windows was a clear loss
+  bool clear_win_before_ = false;   // ... a clear win
+  double most_median_ = 0.0;        // the last pair's median step on all threads
+  int slow_in_row_ = 0;             // steps in a row of the hold beyond slow_factor x most_median_
   double started_ = 0.0;
   std::vector<double> seconds_[2];  // each step's wall in the pair's windows: [0] one thread, [1] most
   long steps_on_one_ = 0, steps_on_most_ = 0;
