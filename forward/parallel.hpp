@@ -9,4 +9,12 @@ namespace ddafit {
 // substep, thousands of times a second of simulation.
 inline constexpr long kParallelMinimum = 512;
 
+// Thread t's contiguous share [first, last) of n items split among `threads`: the same split
+// for every loop over the same items, so the sweeps and the measurement of a step read the
+// same neighbourhood of the slide on the same core.
+struct ThreadShare {
+  long first, last;
+};
+inline ThreadShare thread_share(long n, long t, long threads) { return {n * t / threads, n * (t + 1) / threads}; }
+
 }  // namespace ddafit

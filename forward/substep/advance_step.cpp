@@ -69,7 +69,8 @@ void measure_contacts(SubstepContext& w, double time, double converged_speed) {
     const int t = omp_get_thread_num(), threads = omp_get_num_threads();
 #pragma omp single
     used = threads;
-    for (long k = n * t / threads; k < n * (t + 1) / threads; ++k) {
+    const ThreadShare share = thread_share(n, t, threads);
+    for (long k = share.first; k < share.last; ++k) {
       const ContactManifold& m = manifolds[k];
       for (int q = 0; q < m.point_count; ++q) {
         const ContactPoint& p = m.points[q];

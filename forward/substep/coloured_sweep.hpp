@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "forward/contact/contact_types.hpp"
+#include "forward/parallel.hpp"
 #include "forward/substep/prepare_contacts.hpp"
 
 namespace ddafit {
@@ -72,7 +73,8 @@ void sweep_coloured(const std::vector<std::vector<int>>& colours, Take&& take, B
 #pragma omp parallel
     {
       const long t = omp_get_thread_num(), threads = omp_get_num_threads();
-      share(n * t / threads, n * (t + 1) / threads);
+      const ThreadShare mine = thread_share(n, t, threads);
+      share(mine.first, mine.last);
     }
   }
 }
