@@ -202,6 +202,69 @@ TEST_P(JointCrossingSolver, SliderAcrossARowOfFreeBlocksLeavesTheRowInPlace) {
   }
 }
 
+// A heavy slider starting from rest on a gentle slope over a row of free blocks: a 3 m x 1.5 m
+// slider at 15 deg, friction 8 deg (seed Eq. 4: 1.2 m/s^2), over rows of 0.15-1.0 m blocks
+// 0.3 m thick held to the plane at 60 deg. It must follow Eq. 4 and leave the row in place (1 mm).
+// The implicit solver does (the 0.15 m row is left out: 99 s). The substep solver stops it dead
+// where its front corner first crosses a joint of the row (2.2 cm in, against Eq. 4's 1.36 m in
+// 1.5 s; the row pushed 0.8-14 mm), as if the next block stood proud of the one it rests on; a
+// 1.2 m slider, the same slider at 28 deg, or one arriving at 5 m/s crosses (docs/theory.md,
+// §13, limits of the substep solver). A known defect of that solver, disabled.
+void expect_heavy_slider_crosses_free_row(Integrator integrator, const std::vector<double>& row_lengths) {
+  constexpr double kRowMovement = 1e-3;  // m, as for the row above
+  for (const double row_length : row_lengths) {
+    Scene s = base_scene(kDuration, kStep, kOutput, integrator);
+    const int holds = add_interface(s, "holds", 60.0);
+    const int slides = add_interface(s, "slides", 8.0);
+    s.contact_rules = {{"plane", "row", holds}, {"row", "row", holds}, {"slider", "row", slides}};
+    s.default_interface = slides;
+    const Slope slope(15.0);
+    const double row_height = 0.3, length = 3.0, height = 1.5;
+    s.blocks.push_back(block("plane", {slope.at(0, 0), slope.at(0, -1), slope.at(12, -1), slope.at(12, 0)}, true, 0,
+                             "plane"));
+    const int row_blocks = static_cast<int>(std::ceil(11.0 / row_length));
+    for (int j = 0; j < row_blocks; ++j)
+      s.blocks.push_back(block("row_" + std::to_string(j),
+                               box(slope.at(j * row_length, 0), slope.along, slope.up, row_length, row_height), false, 0,
+                               "row"));
+    int k = 1;
+    while (k * row_length - 0.02 - length < 0.1) ++k;
+    const double rear = k * row_length - 0.02 - length;
+    s.blocks.push_back(block("slider", box(slope.at(rear, row_height), slope.along, slope.up, length, height), false, 0,
+                             "slider"));
+    s.measure.push_back({"centre", slope.at(rear + 0.5 * length, row_height + 0.5 * height)});
+    double row_moved = 0.0;
+    std::vector<Vec2> start;
+    SimulationHooks hooks;
+    hooks.on_output = [&](double, const BlockSystem& system) {
+      for (int b = 1; b <= row_blocks; ++b) {
+        if (start.size() < static_cast<size_t>(row_blocks)) start.push_back(system.blocks[b].centroid);
+        row_moved = std::max(row_moved, (system.blocks[b].centroid - start[b - 1]).norm());
+      }
+    };
+    const SimulationResult r = simulate(s, hooks);
+    const std::string label = name_of(integrator) + ", 3 m slider from rest, row of " + std::to_string(row_length) + " m blocks";
+    ASSERT_EQ(r.summary.status, RunStatus::Completed) << label << ": " << r.summary.message;
+    EXPECT_LT(row_moved, kRowMovement) << label;
+    Crossing c;
+    c.slope = 15.0;
+    c.friction = 8.0;
+    double when = 0.0;
+    const double error = displacement_error(r, c, &when);
+    EXPECT_LT(error, kDisplacementTolerance) << label << ": worst at t = " << when << " s";
+    std::cout << "[measured] " << label << ": row moved " << row_moved << " m, slider displacement error " << error
+              << "\n";
+  }
+}
+
+TEST(JointCrossingFreeRow, DISABLED_AHeavySliderFromRestCrossesARowOfFreeBlocksSubstep) {
+  expect_heavy_slider_crosses_free_row(Integrator::Substep, {0.15, 0.4, 1.0});
+}
+
+TEST(JointCrossingFreeRow, AHeavySliderFromRestCrossesARowOfFreeBlocksImplicit) {
+  expect_heavy_slider_crosses_free_row(Integrator::Implicit, {0.4, 1.0});
+}
+
 // Real steps, 5 cm high: 5 % of the 1 m x 0.5 m block's length, more than the flush
 // tolerance (2 % of its size, 1.4 cm). Up, on a level floor of friction 10 deg, the block
 // arrives at 0.5-2 m/s and must not pass it: its front stays behind the step's face, to the
