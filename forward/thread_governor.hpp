@@ -36,7 +36,8 @@ struct ThreadGovernorSettings {
   // doubles the hold as well, up to max_hold_steps: the windows on one thread are then a
   // growing share of nothing. On Vajont section VII degraded two threads ran a step 1.4-2.1x
   // faster than one in most pairs of windows (1.1-1.2x in two of eleven), and at a fixed hold
-  // 16 of every 272 steps ran on one thread, about 3 % of the wall (docs/performance.md).
+  // 16 of every 272 steps ran on one thread; with doubled holds 64-96 of its 5254 steps did, and
+  // the run took 107.0 s against 113.9 s (means of three, docs/performance.md).
   double clear_win = 1.25;
   // A long hold on all threads ends early once slow_steps steps in a row each take more than
   // slow_factor times the window's median on all threads: another program has taken a core, and

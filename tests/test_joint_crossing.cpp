@@ -151,54 +151,79 @@ TEST_P(JointCrossingSolver, DegradationCarriesItsSlipAcrossJoints) {
   expect_crossing_matches_analytic(c, GetParam());
 }
 
+// A slider on a row of free blocks 0.3 m thick that rest on a fixed plane: the row held to the
+// plane (and block to block) at `hold`, the slider on the row at `slide` (degrees). Returns the run
+// and how far any block of the row moved.
+struct FreeRow {
+  double slope = 28.0, hold = 45.0, slide = 18.0;
+  double row_length = 0.4, plane_length = 14.0;
+  int row_blocks = 30;
+  double length = 1.2, height = 0.6, rear = 0.0;  // the slider, its rear along the slope
+};
+struct FreeRowRun {
+  SimulationResult result;
+  double row_moved = 0.0;  // m
+};
+FreeRowRun run_free_row(const FreeRow& f, Integrator integrator) {
+  Scene s = base_scene(kDuration, kStep, kOutput, integrator);
+  const int holds = add_interface(s, "holds", f.hold);
+  const int slides = add_interface(s, "slides", f.slide);
+  s.contact_rules = {{"plane", "row", holds}, {"row", "row", holds}, {"slider", "row", slides}};
+  s.default_interface = slides;
+  const Slope slope(f.slope);
+  const double row_height = 0.3;
+  s.blocks.push_back(block("plane", {slope.at(0, 0), slope.at(0, -1), slope.at(f.plane_length, -1),
+                                     slope.at(f.plane_length, 0)}, true, 0, "plane"));
+  for (int j = 0; j < f.row_blocks; ++j)
+    s.blocks.push_back(block("row_" + std::to_string(j),
+                             box(slope.at(j * f.row_length, 0), slope.along, slope.up, f.row_length, row_height), false,
+                             0, "row"));
+  s.blocks.push_back(block("slider", box(slope.at(f.rear, row_height), slope.along, slope.up, f.length, f.height),
+                           false, 0, "slider"));
+  s.measure.push_back({"centre", slope.at(f.rear + 0.5 * f.length, row_height + 0.5 * f.height)});
+  FreeRowRun run;
+  std::vector<Vec2> start;
+  SimulationHooks hooks;
+  hooks.on_output = [&](double, const BlockSystem& system) {
+    for (int b = 1; b <= f.row_blocks; ++b) {
+      if (start.size() < static_cast<size_t>(f.row_blocks)) start.push_back(system.blocks[b].centroid);
+      run.row_moved = std::max(run.row_moved, (system.blocks[b].centroid - start[b - 1]).norm());
+    }
+  };
+  run.result = simulate(s, hooks);
+  return run;
+}
+
+// The run of a free row against seed Eq. 4 (slope and slide friction) and the row in place.
+void expect_row_crossed(const FreeRowRun& run, const FreeRow& f, const std::string& label) {
+  constexpr double kRowMovement = 1e-3;  // m: the row's elastic settling is micrometres
+  const SimulationResult& r = run.result;
+  ASSERT_EQ(r.summary.status, RunStatus::Completed) << label << ": " << r.summary.message;
+  EXPECT_LT(run.row_moved, kRowMovement) << label;
+  Crossing c;
+  c.slope = f.slope;
+  c.friction = f.slide;
+  double when = 0.0;
+  const double error = displacement_error(r, c, &when);
+  EXPECT_LT(error, kDisplacementTolerance) << label << ": worst at t = " << when << " s";
+  EXPECT_LT(r.summary.solver.worst_penetration_ratio, kMaxPenetrationRatio) << label;
+  std::cout << "[measured] " << label << ": row moved " << run.row_moved << " m, slider displacement error " << error
+            << "\n";
+}
+
 // The slider on a row of free blocks that rest on a fixed plane: the row's joints are
 // flush only as far as the row's blocks sit still, and they must (friction 45 deg on a
 // 28 deg slope, the slider's drag included: the row needs tan(phi) of 0.53 + 0.33 x 0.27,
 // and has 1.0). The row stays put within 1 mm (its elastic settling is micrometres), and
 // the slider follows seed Eq. 4.
 TEST_P(JointCrossingSolver, SliderAcrossARowOfFreeBlocksLeavesTheRowInPlace) {
-  const Integrator integrator = GetParam();
-  constexpr double kRowMovement = 1e-3;  // m
   for (const double row_length : {0.4, 1.0}) {
-    Scene s = base_scene(kDuration, kStep, kOutput, integrator);
-    const int holds = add_interface(s, "holds", 45.0);
-    const int slides = add_interface(s, "slides", 18.0);
-    s.contact_rules = {{"plane", "row", holds}, {"row", "row", holds}, {"slider", "row", slides}};
-    s.default_interface = slides;
-    const Slope slope(28.0);
-    const double row_height = 0.3, length = 1.2;
-    s.blocks.push_back(block("plane", {slope.at(0, 0), slope.at(0, -1), slope.at(14, -1), slope.at(14, 0)}, true, 0,
-                             "plane"));
-    const int row_blocks = static_cast<int>(12.0 / row_length);
-    for (int j = 0; j < row_blocks; ++j)
-      s.blocks.push_back(block("row_" + std::to_string(j),
-                               box(slope.at(j * row_length, 0), slope.along, slope.up, row_length, row_height), false, 0,
-                               "row"));
-    const double rear = 2.0 * row_length - 0.02 - length;
-    s.blocks.push_back(block("slider", box(slope.at(rear, row_height), slope.along, slope.up, length, 0.6), false, 0,
-                             "slider"));
-    s.measure.push_back({"centre", slope.at(rear + 0.5 * length, row_height + 0.3)});
-    double row_moved = 0.0;
-    std::vector<Vec2> start;
-    SimulationHooks hooks;
-    hooks.on_output = [&](double, const BlockSystem& system) {
-      for (int b = 1; b <= row_blocks; ++b) {
-        if (start.size() < static_cast<size_t>(row_blocks)) start.push_back(system.blocks[b].centroid);
-        row_moved = std::max(row_moved, (system.blocks[b].centroid - start[b - 1]).norm());
-      }
-    };
-    const SimulationResult r = simulate(s, hooks);
-    const std::string label = name_of(integrator) + ", row of " + std::to_string(row_length) + " m blocks";
-    ASSERT_EQ(r.summary.status, RunStatus::Completed) << label << ": " << r.summary.message;
-    EXPECT_LT(row_moved, kRowMovement) << label;
-    Crossing c;
-    c.friction = 18.0;
-    double when = 0.0;
-    const double error = displacement_error(r, c, &when);
-    EXPECT_LT(error, kDisplacementTolerance) << label << ": worst at t = " << when << " s";
-    EXPECT_LT(r.summary.solver.worst_penetration_ratio, kMaxPenetrationRatio) << label;
-    std::cout << "[measured] " << label << ": row moved " << row_moved << " m, slider displacement error " << error
-              << "\n";
+    FreeRow f;
+    f.row_length = row_length;
+    f.row_blocks = static_cast<int>(12.0 / row_length);
+    f.rear = 2.0 * row_length - 0.02 - f.length;
+    expect_row_crossed(run_free_row(f, GetParam()), f,
+                       name_of(GetParam()) + ", row of " + std::to_string(row_length) + " m blocks");
   }
 }
 
@@ -211,49 +236,17 @@ TEST_P(JointCrossingSolver, SliderAcrossARowOfFreeBlocksLeavesTheRowInPlace) {
 // 1.2 m slider, the same slider at 28 deg, or one arriving at 5 m/s crosses (docs/theory.md,
 // §13, limits of the substep solver). A known defect of that solver, disabled.
 void expect_heavy_slider_crosses_free_row(Integrator integrator, const std::vector<double>& row_lengths) {
-  constexpr double kRowMovement = 1e-3;  // m, as for the row above
   for (const double row_length : row_lengths) {
-    Scene s = base_scene(kDuration, kStep, kOutput, integrator);
-    const int holds = add_interface(s, "holds", 60.0);
-    const int slides = add_interface(s, "slides", 8.0);
-    s.contact_rules = {{"plane", "row", holds}, {"row", "row", holds}, {"slider", "row", slides}};
-    s.default_interface = slides;
-    const Slope slope(15.0);
-    const double row_height = 0.3, length = 3.0, height = 1.5;
-    s.blocks.push_back(block("plane", {slope.at(0, 0), slope.at(0, -1), slope.at(12, -1), slope.at(12, 0)}, true, 0,
-                             "plane"));
-    const int row_blocks = static_cast<int>(std::ceil(11.0 / row_length));
-    for (int j = 0; j < row_blocks; ++j)
-      s.blocks.push_back(block("row_" + std::to_string(j),
-                               box(slope.at(j * row_length, 0), slope.along, slope.up, row_length, row_height), false, 0,
-                               "row"));
+    FreeRow f;
+    f.slope = 15.0, f.hold = 60.0, f.slide = 8.0;
+    f.row_length = row_length, f.plane_length = 12.0;
+    f.row_blocks = static_cast<int>(std::ceil(11.0 / row_length));
+    f.length = 3.0, f.height = 1.5;
     int k = 1;
-    while (k * row_length - 0.02 - length < 0.1) ++k;
-    const double rear = k * row_length - 0.02 - length;
-    s.blocks.push_back(block("slider", box(slope.at(rear, row_height), slope.along, slope.up, length, height), false, 0,
-                             "slider"));
-    s.measure.push_back({"centre", slope.at(rear + 0.5 * length, row_height + 0.5 * height)});
-    double row_moved = 0.0;
-    std::vector<Vec2> start;
-    SimulationHooks hooks;
-    hooks.on_output = [&](double, const BlockSystem& system) {
-      for (int b = 1; b <= row_blocks; ++b) {
-        if (start.size() < static_cast<size_t>(row_blocks)) start.push_back(system.blocks[b].centroid);
-        row_moved = std::max(row_moved, (system.blocks[b].centroid - start[b - 1]).norm());
-      }
-    };
-    const SimulationResult r = simulate(s, hooks);
-    const std::string label = name_of(integrator) + ", 3 m slider from rest, row of " + std::to_string(row_length) + " m blocks";
-    ASSERT_EQ(r.summary.status, RunStatus::Completed) << label << ": " << r.summary.message;
-    EXPECT_LT(row_moved, kRowMovement) << label;
-    Crossing c;
-    c.slope = 15.0;
-    c.friction = 8.0;
-    double when = 0.0;
-    const double error = displacement_error(r, c, &when);
-    EXPECT_LT(error, kDisplacementTolerance) << label << ": worst at t = " << when << " s";
-    std::cout << "[measured] " << label << ": row moved " << row_moved << " m, slider displacement error " << error
-              << "\n";
+    while (k * row_length - 0.02 - f.length < 0.1) ++k;
+    f.rear = k * row_length - 0.02 - f.length;  // the front 2 cm before a joint
+    expect_row_crossed(run_free_row(f, integrator), f,
+                       name_of(integrator) + ", 3 m slider from rest, row of " + std::to_string(row_length) + " m blocks");
   }
 }
 
