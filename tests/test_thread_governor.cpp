@@ -37,6 +37,15 @@ std::function<double(int)> dear_every_eighth() {
   };
 }
 
+// Over 5003 steps (Vajont section I's count) where a step costs 1 on one thread and `on_two` on
+// two: the steps spent timing the count the governor does not keep (its windows on it).
+long steps_timing_the_other(double on_two) {
+  Steps clock;
+  ThreadGovernor governor = make(2, clock);
+  run_steps(governor, clock, 5003, [on_two](int t) { return t == 1 ? 1.0 : on_two; });
+  return on_two < 1.0 ? governor.steps_on_one() : governor.steps_on_most();
+}
+
 // Two windows of 16 steps, then 240 on the choice: the first choice holds from step 32 to 271.
 constexpr int kWindow = 16;
 constexpr int kPair = 2 * kWindow;
@@ -98,19 +107,13 @@ TEST(ThreadGovernor, ADearStepOrTwoDoNotDecide) {
 // hold (240, 480, 960, 1920, 1920 steps), so over section I's 5003 steps the windows on two
 // threads are five, 80 steps, not the nineteen of a fixed hold (304 steps).
 TEST(ThreadGovernor, APersistentClearLossIsTimedLessAndLessOften) {
-  Steps clock;
-  ThreadGovernor governor = make(2, clock);
-  run_steps(governor, clock, 5003, [](int t) { return t == 1 ? 1.0 : 10.0; });
-  EXPECT_EQ(governor.steps_on_most(), 5 * kWindow);
+  EXPECT_EQ(steps_timing_the_other(10.0), 5 * kWindow);
 }
 
 // A mild loss (a scene too small to share: section I alone, two threads 10-25 % slower) keeps
 // the fixed hold, so the run finds two threads again within 272 steps once they pay.
 TEST(ThreadGovernor, AMildLossKeepsTheFixedHold) {
-  Steps clock;
-  ThreadGovernor governor = make(2, clock);
-  run_steps(governor, clock, 5003, [](int t) { return t == 1 ? 1.0 : 1.2; });
-  EXPECT_EQ(governor.steps_on_most(), 19 * kWindow);  // a pair every 272 steps: 19 begin before 5003
+  EXPECT_EQ(steps_timing_the_other(1.2), 19 * kWindow);  // a pair every 272 steps: 19 begin before 5003
 }
 
 // When the other program ends, the next pair of windows sees two threads win and the hold is
@@ -135,19 +138,13 @@ TEST(ThreadGovernor, TheBackOffEndsWhenTwoThreadsWinAgain) {
 // were 1.4-2.1x faster on two): each clear win in a row doubles the hold (240, 480, 960, 1920,
 // 1920), so over 5003 steps five windows run on one thread, not nineteen.
 TEST(ThreadGovernor, ClearWinsInARowAreTimedLessAndLessOften) {
-  Steps clock;
-  ThreadGovernor governor = make(2, clock);
-  run_steps(governor, clock, 5003, [](int t) { return t == 1 ? 1.0 : 0.5; });
-  EXPECT_EQ(governor.steps_on_one(), 5 * kWindow);
+  EXPECT_EQ(steps_timing_the_other(0.5), 5 * kWindow);
 }
 
 // A mild win (two threads 10 % faster, under the clear win's 1.25) keeps the fixed hold: the
 // choice is close, and is timed again every 272 steps.
 TEST(ThreadGovernor, AMildWinKeepsTheFixedHold) {
-  Steps clock;
-  ThreadGovernor governor = make(2, clock);
-  run_steps(governor, clock, 5003, [](int t) { return t == 1 ? 1.0 : 0.9; });
-  EXPECT_EQ(governor.steps_on_one(), 19 * kWindow);
+  EXPECT_EQ(steps_timing_the_other(0.9), 19 * kWindow);
 }
 
 // Another program takes the second core in the middle of a long hold on two threads: the run
