@@ -230,7 +230,8 @@ TEST_P(JointCrossingSolver, SliderAcrossARowOfFreeBlocksLeavesTheRowInPlace) {
 // A heavy slider starting from rest on a gentle slope over a row of free blocks: a 3 m x 1.5 m
 // slider at 15 deg, friction 8 deg (seed Eq. 4: 1.2 m/s^2), over rows of 0.15-1.0 m blocks
 // 0.3 m thick held to the plane at 60 deg. It must follow Eq. 4 and leave the row in place (1 mm).
-// The implicit solver does (the 0.15 m row is left out: 99 s). The substep solver stops it dead
+// The implicit solver does here (the 0.15 m row is left out: 99 s), though on a longer row of
+// 0.15 m blocks it hooked too (docs/theory.md §13). The substep solver stops it dead
 // where its front corner first crosses a joint of the row (2.2 cm in, against Eq. 4's 1.36 m in
 // 1.5 s; the row pushed 0.8-14 mm), as if the next block stood proud of the one it rests on; a
 // 1.2 m slider, the same slider at 28 deg, or one arriving at 5 m/s crosses (docs/theory.md,
