@@ -233,9 +233,10 @@ TEST_P(JointCrossingSolver, SliderAcrossARowOfFreeBlocksLeavesTheRowInPlace) {
 // The implicit solver does here (the 0.15 m row is left out: 99 s), though on a longer row of
 // 0.15 m blocks it hooked too (docs/theory.md §13). The substep solver stops it dead
 // where its front corner first crosses a joint of the row (2.2 cm in, against Eq. 4's 1.36 m in
-// 1.5 s; the row pushed 0.8-14 mm), as if the next block stood proud of the one it rests on; a
-// 1.2 m slider, the same slider at 28 deg, or one arriving at 5 m/s crosses (docs/theory.md,
-// §13, limits of the substep solver). A known defect of that solver, disabled.
+// 1.5 s; the row pushed 0.8-14 mm): the loaded blocks under it sit 1.6 um deeper in their soft
+// contact with the plane than the unloaded one ahead, whose edge then stands proud. A 1.2 m
+// slider, the same slider at 28 deg, or one arriving at 5 m/s crosses (docs/theory.md, §13,
+// limits of the substep solver). A known defect of that solver, disabled.
 void expect_heavy_slider_crosses_free_row(Integrator integrator, const std::vector<double>& row_lengths) {
   for (const double row_length : row_lengths) {
     FreeRow f;

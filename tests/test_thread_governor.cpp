@@ -134,9 +134,9 @@ TEST(ThreadGovernor, TheBackOffEndsWhenTwoThreadsWinAgain) {
   EXPECT_EQ(governor.steps_on_one() - one_before, kWindow);
 }
 
-// Two threads a clear win (two Vajont section VII degraded steps in three of the pairs timed
-// were 1.4-2.1x faster on two): each clear win in a row doubles the hold (240, 480, 960, 1920,
-// 1920), so over 5003 steps five windows run on one thread, not nineteen.
+// Two threads a clear win (on Vajont section VII degraded a step ran 1.4-2.1x faster on two in
+// nine of eleven pairs of windows): each clear win in a row doubles the hold (240, 480, 960,
+// 1920, 1920), so over 5003 steps five windows run on one thread, not nineteen.
 TEST(ThreadGovernor, ClearWinsInARowAreTimedLessAndLessOften) {
   EXPECT_EQ(steps_timing_the_other(0.5), 5 * kWindow);
 }
