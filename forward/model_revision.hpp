@@ -7,6 +7,6 @@
 
 namespace ddafit {
 
-inline constexpr const char* kModelRevision = "2026-11-29.5";
+inline constexpr const char* kModelRevision = "2026-12-01.1";
 
 }  // namespace ddafit

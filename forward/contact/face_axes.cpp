@@ -114,6 +114,27 @@ Axis best_axis(const Shape& p, std::span<const char> solid, std::span<const char
   return best;
 }
 
+ProudFace proud_face(const Shape& p, std::span<const char> solid, const Shape& q, const AxisLimits& limits,
+                     double depth) {
+  ProudFace best;
+  for (int i = 0; i < p.n; ++i) {
+    if (!solid.empty() && !solid[static_cast<size_t>(i)]) continue;
+    const Vec2 p0 = p.at(i), edge = p.at(i + 1) - p0;
+    const double length = edge.norm();
+    if (!(length > limits.tiny)) continue;
+    const Vec2 normal = outward(edge) / length;
+    double gap = kInfinity, own = 0.0;
+    for (int k = 0; k < q.n; ++k) gap = std::min(gap, normal.dot(q.at(k) - p0));
+    if (gap > 0.0 || gap < -depth) continue;
+    for (int k = 0; k < p.n; ++k) own = std::max(own, normal.dot(p.at(k) - p0));
+    const double separation = gap - own;
+    if (separation < -depth || !(length >= limits.eta || face_length(p, i, limits.flat) >= limits.eta)) continue;
+    const double support = std::max(normal.dot(limits.support_q), -normal.dot(limits.support_p));
+    if (support > best.support) best = {i, separation, support};
+  }
+  return best;
+}
+
 bool cut_separates(const Shape& p, const Shape& q, double tiny, std::span<const char> solid, double slop) {
   for (int i = 0; i < p.n && !solid.empty(); ++i) {
     if (solid[static_cast<size_t>(i)]) continue;

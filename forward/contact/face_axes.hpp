@@ -107,6 +107,18 @@ struct AxisLimits {
 Axis best_axis(const Shape& p, std::span<const char> solid, std::span<const char> reflex, const Shape& q,
                std::span<const char> q_reflex, const AxisLimits& limits);
 
+// "Proud edges" (manifold.hpp): of p's faces that may be a reference face (solid, at least
+// eta long) and that q overlaps by no more than `depth` (separation in [-depth, 0]), the one
+// whose normal (from p towards q) agrees best with the supports (limits.support_p/q); edge -1
+// if none. Asked only of a pair that overlaps that little along every axis.
+struct ProudFace {
+  int edge = -1;
+  double separation = -kInfinity;
+  double support = -kInfinity;
+};
+ProudFace proud_face(const Shape& p, std::span<const char> solid, const Shape& q, const AxisLimits& limits,
+                     double depth);
+
 // True when some cut of p (solid[i] false; manifold.hpp, "Solid edges") has q wholly beyond
 // it, within slop.
 bool cut_separates(const Shape& p, const Shape& q, double tiny, std::span<const char> solid, double slop);

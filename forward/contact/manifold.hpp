@@ -110,6 +110,20 @@ struct ManifoldSettings {
 // meets the next block of it through its face), while both corners lie within eta / 10 of
 // their lines; else the one the polygon lies closer to the line of.
 //
+// Proud edges: when the two polygons overlap by no more than linear_slop along every axis
+// (deepest separation in [-linear_slop, 0]) and a face overlapped within linear_slop of that
+// agrees clearly better (kSupportTie) with the supports of the last step than the separating
+// axis's face, that face is the reference. A block on a row of free blocks presses the ones
+// under it a little deeper into their own supports than the unloaded block ahead, whose edge
+// then stands proud by micrometres (1.6 um for a 3 m x 1.5 m slider on 0.4 m blocks held by a
+// soft contact). When the slider's corner has just crossed that joint, its front face overlaps
+// the joint face by less than the proud edge overlaps its bottom, and the separating axis took
+// the joint face: the two faces, parallel, made a face contact that held the slider at the
+// joint for good (docs/theory.md §13). An edge that stands up to linear_slop proud is below
+// the contact's resolution (the substep solver pushes out only overlaps deeper than the slop);
+// a real step (higher than that) still stops the block. Without supports (the first step)
+// the separating axis decides.
+//
 // Solid edges: a convex piece of a concave block has edges that run inside the block
 // (the cuts of its decomposition). Such an edge is no face: a neighbour can only be
 // across it by overlapping the block's other pieces, and taking it as the reference face
