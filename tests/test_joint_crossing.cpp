@@ -234,7 +234,7 @@ TEST_P(JointCrossingSolver, SliderAcrossARowOfFreeBlocksLeavesTheRowInPlace) {
 // unloaded one ahead, whose edge stands proud by that much. Until revision 2026-12-01.1 the
 // substep solver stopped the slider dead where its front corner first crossed a joint (2.2 cm
 // in, against Eq. 4's 1.36 m in 1.5 s): the joint face, overlapped less than the proud edge,
-// was the separating axis (forward/contact/manifold.hpp, "Proud edges"; test_proud_edges.cpp).
+// was the separating axis (forward/contact/manifold.hpp, "Proud edges"; test_flush_neighbours.cpp).
 // The implicit solver's 0.15 m row is left out: 99 s.
 void expect_heavy_slider_crosses_free_row(Integrator integrator, const std::vector<double>& row_lengths,
                                           double slope = 15.0, double slide = 8.0) {
