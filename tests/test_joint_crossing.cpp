@@ -261,7 +261,7 @@ TEST(JointCrossingFreeRow, AHeavySliderFromRestCrossesARowOfFreeBlocksImplicit) 
   expect_heavy_slider_crosses_free_row(Integrator::Implicit, {0.4, 1.0});
 }
 
-// The same slider from rest on steeper slopes (seed Eq. 4: 2.8 and 4.9 m/s^2), both solvers:
+// The same slider from rest on steeper slopes (seed Eq. 4: 1.8 and 4.9 m/s^2), both solvers:
 // the proud edge is there at any slope; only the time the corner spends near it changes.
 // The implicit solver at 28 deg passes too (8.7e-4 and 1.2e-4 of Eq. 4 on rows of 0.4 and
 // 1.0 m) but takes 50 s, its row creeping under the slider (0.19 mm); it is left out.
