@@ -23,6 +23,14 @@ namespace ddafit {
 // the 5 % of a 5 cm step under a 1 m block, which must stop a block arriving at 2 m/s
 // (test_joint_crossing.cpp).
 inline constexpr double kFlushRatio = 0.02;
+// Of the smaller free block's size (the square root of its area): the least depth of a proud
+// edge (manifold.hpp, "Proud edges") when the linear slop is smaller. A row block loaded by a
+// 3 m x 1.5 m slider sat 1.6 um deeper than its unloaded neighbour; with the displacement limit
+// at 2e-4 the slop was 1.3 um and the slider hooked on a row of 1.0 m x 0.3 m blocks (2.7 um
+// here; 2.5e-6 of the size, 1.4 um, did not free it). On Vajont the slop (0.25 mm) is the larger
+// for every block under 50 m: sections I and II and section VII's first 10 s are the same to the
+// byte with and without this floor (revision 2026-12-01.2).
+inline constexpr double kProudRatio = 5e-6;
 
 struct CollideSettings {
   double margin = 0.0;       // m: points are kept while their gap is below this (speculative)

@@ -212,18 +212,19 @@ Manifold collide_polygons(std::span<const Vec2> a, std::span<const Vec2> b, cons
                                    : axis_b.separation > axis_a.separation + 0.1 * linear_slop;
   bool flip = edge_a < 0 || (edge_b >= 0 && better_b);
   // Proud edges (manifold.hpp): a corner just across a joint whose far block stands up to
-  // linear_slop proud overlaps it along its own face and along the joint's face alike; the
+  // proud_depth proud overlaps it along its own face and along the joint's face alike; the
   // face along which the two blocks were held up in the last step is the contact.
   const double deepest = std::max(axis_a.separation, axis_b.separation);
-  if (!flush_face && deepest <= 0.0 && deepest >= -linear_slop) {
-    const ProudFace proud_a = proud_face(sa, a_solid, sb, limits_a, 2.0 * linear_slop);
-    const ProudFace proud_b = proud_face(sb, b_solid, sa, limits_b, 2.0 * linear_slop);
+  const double proud_depth = std::max(linear_slop, settings.proud_floor);
+  if (!flush_face && deepest <= 0.0 && deepest >= -proud_depth) {
+    const ProudFace proud_a = proud_face(sa, a_solid, sb, limits_a, 2.0 * proud_depth);
+    const ProudFace proud_b = proud_face(sb, b_solid, sa, limits_b, 2.0 * proud_depth);
     const bool from_b = proud_b.support > proud_a.support;
     const ProudFace& proud = from_b ? proud_b : proud_a;
     const Vec2 n = face_normal(flip ? sb : sa, flip ? edge_b : edge_a, flat);
     const double chosen_support = flip ? std::max(n.dot(settings.support_a), -n.dot(settings.support_b))
                                        : std::max(n.dot(settings.support_b), -n.dot(settings.support_a));
-    if (proud.edge >= 0 && proud.separation >= deepest - linear_slop && proud.support > chosen_support + kSupportTie) {
+    if (proud.edge >= 0 && proud.separation >= deepest - proud_depth && proud.support > chosen_support + kSupportTie) {
       (from_b ? edge_b : edge_a) = proud.edge;
       flip = from_b;
     }

@@ -58,6 +58,8 @@ struct ManifoldSettings {
   bool flip_for_cuts = true;
   // m, >= 0: the flush tolerance eta of "Flush neighbours"; 0 turns the rule off.
   double flush_tolerance = 0.0;
+  // m, >= 0: "Proud edges" reads edges up to max(linear_slop, proud_floor) proud.
+  double proud_floor = 0.0;
   // "Flush faces", and "Flush neighbours" judged on the part of a polygon near the line;
   // off, the whole polygon must lie beside a face and the separating axis decides the rest.
   bool flush_faces = true;
@@ -110,8 +112,8 @@ struct ManifoldSettings {
 // meets the next block of it through its face), while both corners lie within eta / 10 of
 // their lines; else the one the polygon lies closer to the line of.
 //
-// Proud edges: when the two polygons overlap by no more than linear_slop along every axis
-// (deepest separation in [-linear_slop, 0]) and a face overlapped within linear_slop of that
+// Proud edges: when the two polygons overlap by no more than h = max(linear_slop, proud_floor)
+// along every axis (deepest separation in [-h, 0]) and a face overlapped within h of that
 // agrees clearly better (kSupportTie) with the supports of the last step than the separating
 // axis's face, that face is the reference. A block on a row of free blocks presses the ones
 // under it a little deeper into their own supports than the unloaded block ahead, whose edge
@@ -121,7 +123,8 @@ struct ManifoldSettings {
 // the joint face: the two faces, parallel, made a face contact that held the slider at the
 // joint for good (docs/theory.md §13). An edge that stands up to linear_slop proud is below
 // the contact's resolution (the substep solver pushes out only overlaps deeper than the slop);
-// a real step (higher than that) still stops the block. Without supports (the first step)
+// proud_floor keeps h at a few micrometres a metre of block where a small displacement limit
+// makes the slop smaller than such an edge. A real step (higher than h) still stops the block. Without supports (the first step)
 // the separating axis decides.
 //
 // Solid edges: a convex piece of a concave block has edges that run inside the block
