@@ -18,7 +18,6 @@ namespace ddafit {
 namespace {
 
 constexpr double kGravity = 9.81;
-constexpr double kDisplacementTolerance = 0.01;
 
 // mu(d, v) of each law, written from its equation (docs/scene-format.md, "Friction laws").
 double law_coefficient(const Crossing& c, double d, double v) {
