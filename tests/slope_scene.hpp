@@ -128,36 +128,26 @@ struct SlideError {
 constexpr double kDisplacementTolerance = 0.01;
 
 // Largest relative error of the slider's displacement along the slope against seed Eq. 4
-// (Eq. 5 by RK4 when it degrades) over the outputs where it has moved 1 cm.
+// (Eq. 5 by RK4 when it degrades) over the outputs where it has moved 1 cm (slide_error).
 [[maybe_unused]] double displacement_error(const SimulationResult& r, const Crossing& c, double* worst_time) {
-  const Slope slope(c.slope);
-  std::vector<double> times, model;
-  for (const HistoryRow& row : r.history) {
-    times.push_back(row.time);
-    model.push_back(row.displacement.dot(slope.along));
-  }
-  std::vector<double> exact(times.size()), speed;
-  if (c.roughness > 0.0) {
-    verification::InclineAnalytic eq5;
-    eq5.slope_angle = c.slope;
-    eq5.friction_angle = c.friction;
-    eq5.roughness_angle = c.roughness;
-    eq5.critical_distance = c.dc_ratio * c.length;
-    eq5.solve(times, exact, speed);  // from rest (the degrading cases start at rest)
-  } else {
-    const double a = 9.81 * (std::sin(c.slope * kDegree) - std::cos(c.slope * kDegree) * std::tan(c.friction * kDegree));
-    for (size_t k = 0; k < times.size(); ++k) exact[k] = c.speed * times[k] + 0.5 * a * times[k] * times[k];
-  }
-  double worst = 0.0;
-  for (size_t k = 0; k < times.size(); ++k) {
-    if (exact[k] < 0.01) continue;
-    const double e = std::abs(model[k] - exact[k]) / exact[k];
-    if (e > worst) {
-      worst = e;
-      *worst_time = times[k];
+  const SlideError e = slide_error(r, Slope(c.slope), [&](const std::vector<double>& times) {
+    std::vector<double> exact(times.size()), speed;
+    if (c.roughness > 0.0) {
+      verification::InclineAnalytic eq5;
+      eq5.slope_angle = c.slope;
+      eq5.friction_angle = c.friction;
+      eq5.roughness_angle = c.roughness;
+      eq5.critical_distance = c.dc_ratio * c.length;
+      eq5.solve(times, exact, speed);  // from rest (the degrading cases start at rest)
+    } else {
+      const double a =
+          9.81 * (std::sin(c.slope * kDegree) - std::cos(c.slope * kDegree) * std::tan(c.friction * kDegree));
+      for (size_t k = 0; k < times.size(); ++k) exact[k] = c.speed * times[k] + 0.5 * a * times[k] * times[k];
     }
-  }
-  return worst;
+    return exact;
+  });
+  *worst_time = e.when;
+  return e.worst;
 }
 
 }  // namespace

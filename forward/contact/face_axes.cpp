@@ -86,7 +86,7 @@ Axis best_axis(const Shape& p, std::span<const char> solid, std::span<const char
         const Span close = near_line_span(q, p0, normal, tangent, kRideDepth * eta);
         best.rides = std::min(close.hi, to) - std::max(close.lo, from) > eta;
       }
-      const double support = std::max(normal.dot(limits.support_q), -normal.dot(limits.support_p));
+      const double support = support_agreement(normal, limits);
       // Only a face the polygon lies close against (a tenth of eta): in a packed mass many
       // blocks lie within eta of a neighbour's face line, and overriding the separating axis
       // for all of them let Vajont section IV overlap by 1 % of a block.
@@ -129,7 +129,7 @@ ProudFace proud_face(const Shape& p, std::span<const char> solid, const Shape& q
     for (int k = 0; k < p.n; ++k) own = std::max(own, normal.dot(p.at(k) - p0));
     const double separation = gap - own;
     if (separation < -depth || !(length >= limits.eta || face_length(p, i, limits.flat) >= limits.eta)) continue;
-    const double support = std::max(normal.dot(limits.support_q), -normal.dot(limits.support_p));
+    const double support = support_agreement(normal, limits);
     if (support > best.support) best = {i, separation, support};
   }
   return best;

@@ -4,6 +4,7 @@
 // clipping). Internal to the contact stage.
 #pragma once
 
+#include <algorithm>
 #include <limits>
 #include <span>
 
@@ -101,6 +102,11 @@ struct AxisLimits {
   // towards q agrees with q's support, or against p's.
   Vec2 support_p = Vec2::Zero(), support_q = Vec2::Zero();
 };
+// How well a face normal of p (from p towards q) agrees with the supports of the last step:
+// it points the way q's block was pushed, or against p's.
+inline double support_agreement(const Vec2& normal, const AxisLimits& limits) {
+  return std::max(normal.dot(limits.support_q), -normal.dot(limits.support_p));
+}
 // `reflex` and `q_reflex` mark the corners that are reflex corners of their blocks (empty:
 // none): q beside such an end of a face, or with such a corner near the face's line, is no
 // flush neighbour.

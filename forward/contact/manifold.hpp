@@ -124,8 +124,8 @@ struct ManifoldSettings {
 // joint for good (docs/theory.md §13). An edge that stands up to linear_slop proud is below
 // the contact's resolution (the substep solver pushes out only overlaps deeper than the slop);
 // proud_floor keeps h at a few micrometres a metre of block where a small displacement limit
-// makes the slop smaller than such an edge. A real step (higher than h) still stops the block. Without supports (the first step)
-// the separating axis decides.
+// makes the slop smaller than such an edge. A real step (higher than h) still stops the block.
+// Without supports (the first step) the separating axis decides.
 //
 // Solid edges: a convex piece of a concave block has edges that run inside the block
 // (the cuts of its decomposition). Such an edge is no face: a neighbour can only be
