@@ -44,6 +44,7 @@ void carry_over(const ContactManifold* old, double slop, ContactPoint& p) {
   const auto start_step = [](SpringState& c) {
     c.step_state = c.state;
     c.state_changes = 0;
+    c.shear_scale = 1.0f;
   };
   if (old) {
     for (int k = 0; k < old->point_count; ++k) {

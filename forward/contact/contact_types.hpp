@@ -51,6 +51,10 @@ struct SpringState {
   double slip_direction = 0.0;  // s = +1/-1: sign of the slip of b relative to a along the tangent
   double normal_force = 0.0;    // N >= 0 from the last iterate (compression), N/m
   int state_changes = 0;        // in this step's open-close iteration (check_contacts.cpp)
+  // The share of the shear stiffness a locked point keeps this step: 1, or less once it is
+  // frozen locked past its Coulomb cap (check_contacts.cpp, "Capped locks"). A float fills
+  // the padding after state_changes, so that ContactPoint does not grow.
+  float shear_scale = 1.0f;
   // The last iterate's kinematics, from the step's unknowns.
   double normal_gap = 0.0;  // d_n at the end of the step, m (< 0 = penetration)
   double step_slip = 0.0;   // relative tangential motion over the step, m

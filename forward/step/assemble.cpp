@@ -78,8 +78,8 @@ void assemble(const BlockSystem& s, const ContactSet& contacts, const StepParame
       add_spring(ba, bb, lin.normal_a, lin.normal_b, lin.gap0 - spring_reference(p, step), step.penalty, key, pair, k,
                  f);
       if (p.spring.state == ContactState::Locked) {
-        add_spring(ba, bb, lin.shear_a, lin.shear_b, p.spring.shear_offset, step.shear_penalty, key + 1,
-                   pair, k, f);
+        add_spring(ba, bb, lin.shear_a, lin.shear_b, p.spring.shear_offset, locked_shear_stiffness(p.spring, step),
+                   key + 1, pair, k, f);
       } else {
         // Sliding: a known friction force opposing the slip of b relative to a.
         const double force = p.spring.slip_direction * sliding_friction_force(m, p);

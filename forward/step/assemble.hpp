@@ -52,6 +52,12 @@ struct GlobalSystem {
 void assemble(const BlockSystem& system, const ContactSet& contacts, const StepParameters& step,
               GlobalSystem& equations);
 
+// The shear stiffness of a locked point: k_s, or the share of it a capped lock keeps
+// (check_contacts.cpp, "Capped locks").
+inline double locked_shear_stiffness(const SpringState& c, const StepParameters& step) {
+  return c.shear_scale * step.shear_penalty;
+}
+
 // Friction force magnitude of a sliding point: N tan(phi), phi from its face's slip history
 // predicted to the middle of the step (forward/contact/contact_law.hpp, seed Eq. 2-3).
 inline double sliding_friction_force(const ContactManifold& m, const ContactPoint& p) {

@@ -26,6 +26,7 @@ struct PointRef {
 struct ContactCheck {
   int frozen = 0;                 // points held in their state because they cycle
   int changed = 0;                // points whose state differs from the last iterate
+  int capped = 0;                 // frozen locked points softened to their cap (check_contacts.cpp)
   PointRef first_changed;         // one of them, for diagnoses
   double max_force_change = 0.0;  // largest change of a sliding point's N / largest N
 };

@@ -41,14 +41,18 @@ OpenCloseResult open_close_iterate(ImplicitStepContext& ctx, const StepParameter
       check = check_contacts(s, contacts, eq.d, step);
     }
     const bool last = pass == options.max_open_close_iterations;
-    calm_passes = check.changed == 0 ? calm_passes + 1 : 0;
+    // A capped lock softened in this pass (check_contacts.cpp) moved its force: the
+    // iteration goes on, but a pass limit reached with only such points left is no reason to
+    // cut the step (their forces are at their caps as of this pass).
+    const bool calm = check.changed == 0 && check.capped == 0;
+    calm_passes = calm ? calm_passes + 1 : 0;
     // Friction uses the normal forces of the previous pass. Where sliding blocks carry
     // each other (a sliding rock mass) that fixed point can stall at a few percent
     // instead of converging; once the states have held for two passes and the change
     // has stopped shrinking, more passes buy nothing.
     const bool stalled = calm_passes >= 2 && check.max_force_change >= 0.9 * previous_force_change;
     previous_force_change = check.max_force_change;
-    const bool settled = check.changed == 0 && (check.max_force_change <= kNormalForceTolerance || stalled);
+    const bool settled = calm && (check.max_force_change <= kNormalForceTolerance || stalled);
     // On the last pass a few contacts still changing state do not make the step wrong:
     // their forces differ by the swing of their own gap or slip. Cutting the step for
     // them instead lowers the contact step number dt sqrt(p/m), which undamps contact

@@ -51,11 +51,20 @@ void update_blocks(ImplicitStepContext& ctx, double dt) {
       SpringState& c = p.spring;
       p.slip = 0.0;
       p.normal_load = c.state == ContactState::Open ? 0.0 : std::max(c.normal_force, 0.0);
-      if (c.state == ContactState::Locked) {
+      if (c.state == ContactState::Locked && c.shear_scale == 1.0f) {
         c.shear_offset += c.step_slip;  // the spring keeps its offset
         continue;
       }
       break_bond(p);
+      if (c.state == ContactState::Locked) {
+        // A capped lock (check_contacts.cpp): its spring carries the force of the softened
+        // one, k_s' (d_s0 + d_s), as an offset at full stiffness; the rest of the move is
+        // slip (seed Eq. 2), as for a sliding point.
+        const double moved = c.shear_offset + c.step_slip;
+        c.shear_offset = c.shear_scale * moved;
+        p.slip = std::abs(moved - c.shear_offset);
+        continue;
+      }
       if (c.state == ContactState::Sliding) {
         p.slip = std::abs(sliding_slip(c));  // seed Eq. 2
         c.shear_offset = sliding_shear_offset(m, p, shear_penalty);  // pre-loaded for a lock
