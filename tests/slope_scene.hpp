@@ -76,6 +76,11 @@ struct Crossing {
   return s;
 }
 
+// Seed Eq. 4's acceleration down a slope of `slope` degrees at friction `friction` degrees, m/s^2.
+[[maybe_unused]] double eq4_acceleration(double slope, double friction) {
+  return 9.81 * (std::sin(slope * kDegree) - std::cos(slope * kDegree) * std::tan(friction * kDegree));
+}
+
 // Distance down a slope at `times` for d'' = accel(d, d') from d = 0, d' = v0, by classical
 // RK4 with 1e-5 s steps; the block sticks where it stops if accel(d, 0) <= 0 holds it.
 [[maybe_unused]] std::vector<double> rk4_slide(const std::function<double(double, double)>& accel, double v0,
@@ -140,8 +145,7 @@ constexpr double kDisplacementTolerance = 0.01;
       eq5.critical_distance = c.dc_ratio * c.length;
       eq5.solve(times, exact, speed);  // from rest (the degrading cases start at rest)
     } else {
-      const double a =
-          9.81 * (std::sin(c.slope * kDegree) - std::cos(c.slope * kDegree) * std::tan(c.friction * kDegree));
+      const double a = eq4_acceleration(c.slope, c.friction);
       for (size_t k = 0; k < times.size(); ++k) exact[k] = c.speed * times[k] + 0.5 * a * times[k] * times[k];
     }
     return exact;

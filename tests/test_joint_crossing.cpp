@@ -350,10 +350,11 @@ TEST_P(ShortBlocksSweep, SlidersAStableSlopeHoldsStayOrStopAsSeedEq4Says) {
               EXPECT_LT(r.history.back().displacement.norm(), 1e-4) << label;
               continue;
             }
-            const double a = 9.81 * (std::sin(slope * kDegree) - std::cos(slope * kDegree) * std::tan(c.friction * kDegree));
-            const double t = std::min(r.history.back().time, speed / -a);
-            const double exact = speed * t + 0.5 * a * t * t;
-            EXPECT_LT(std::abs(moved - exact), kDisplacementTolerance * exact) << label << ": " << moved << " m against " << exact;
+            // Eq. 4 integrated by rk4_slide, which holds the slider where it stops.
+            const double a = eq4_acceleration(slope, c.friction);
+            const double exact = rk4_slide([a](double, double) { return a; }, speed, {r.history.back().time}).back();
+            EXPECT_LT(std::abs(moved - exact), kDisplacementTolerance * exact)
+                << label << ": " << moved << " m against " << exact;
           }
 }
 

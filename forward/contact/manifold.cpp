@@ -221,9 +221,11 @@ Manifold collide_polygons(std::span<const Vec2> a, std::span<const Vec2> b, cons
     const ProudFace proud_b = proud_face(sb, b_solid, sa, limits_b, 2.0 * proud_depth);
     const bool from_b = proud_b.support > proud_a.support;
     const ProudFace& proud = from_b ? proud_b : proud_a;
-    const double chosen_support =
-        support_agreement(face_normal(flip ? sb : sa, flip ? edge_b : edge_a, flat), flip ? limits_b : limits_a);
-    if (proud.edge >= 0 && proud.separation >= deepest - proud_depth && proud.support > chosen_support + kSupportTie) {
+    const auto chosen_support = [&] {
+      return support_agreement(face_normal(flip ? sb : sa, flip ? edge_b : edge_a, flat), flip ? limits_b : limits_a);
+    };
+    if (proud.edge >= 0 && proud.separation >= deepest - proud_depth &&
+        proud.support > chosen_support() + kSupportTie) {
       (from_b ? edge_b : edge_a) = proud.edge;
       flip = from_b;
     }

@@ -80,11 +80,11 @@ void classify(const Interface& face, const ContactManifold& m, ContactPoint& p, 
 bool cap_lock(const Interface& face, const ContactManifold& m, ContactPoint& p, const StepParameters& step) {
   SpringState& c = p.spring;
   const double limit = coulomb_cap(m.friction, c.normal_force, cohesive_strength(face, p));
-  const double shear = std::abs(locked_shear_stiffness(c, step) * (c.shear_offset + c.step_slip));
+  const double stiffness = locked_shear_stiffness(c, step);
+  const double shear = std::abs(stiffness * (c.shear_offset + c.step_slip));
   if (!(shear > limit)) return false;
-  const double excess = (shear - limit) / locked_shear_stiffness(c, step);
   c.shear_scale = static_cast<float>(c.shear_scale * (limit / shear));
-  return shear > kCapTolerance * limit && excess > step.contact_tolerance;
+  return shear > kCapTolerance * limit && (shear - limit) / stiffness > step.contact_tolerance;
 }
 
 }  // namespace
