@@ -241,11 +241,11 @@ TEST(ImpactRebound, ABlockDroppedOntoAColumnOfTwentyDoesNotBounceOffSubstep) {
 // 4 m block at 2 m/s onto thirty 4 x 1 m blocks: 13.9 %, bound 9.9 %; 7 of 24 at .29.3). An
 // impact group grows about two blocks a round and stops after ImpactConvergence::max_rounds (8);
 // more rounds (16) made it worse (6 of 48 over, columns of 20 and 30). Traced 2026-12-02
-// (docs/theory.md §13, "Tried 2026-12-02 and not kept"): after a settling group stops the column
-// while it rises, the warm start hands on the weight less the braking (57 % at the floor), and the
-// column rings as a Gauss-Seidel wave that no joint closes fast enough to start a group. Handing on
-// a grounded group's resting impulses instead passes all 24 but fails a column of twenty and takes
-// Vajont section VII degraded's worst overlap from 0.44 to 0.91 %.
+// (docs/theory.md §13, "Tried 2026-12-02 and not kept"): after a settling group stops the moving
+// column, the warm start hands on the weight less the braking (56 % at the floor), the column
+// sinks, its groups are too large to solve, and a block is thrown up. Handing on a grounded
+// group's resting impulses instead passes all 24 but fails a column of twenty and takes Vajont
+// section VII degraded's worst overlap from 0.44 to 0.91 %.
 TEST(ImpactRebound, DISABLED_ABlockDroppedOntoAColumnOfThirtyDoesNotBounceOffSubstep) {
   expect_inelastic(Shape::Stack, Integrator::Substep, {2.0, 5.0, 10.0}, 24, {30});
 }
