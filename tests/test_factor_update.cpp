@@ -202,9 +202,14 @@ TEST(FactorUpdate, StandingWallSettlesAsWithRefactorisation) {
   ASSERT_EQ(a.summary.status, RunStatus::Completed) << a.summary.message;
   ASSERT_EQ(b.summary.status, RunStatus::Completed) << b.summary.message;
   EXPECT_EQ(a.summary.run.factor_updates, 0);
-  // Each step's first pass has new geometry and factorises; about half the rest are updates
-  // on so small a wall (100 bricks: a factorisation is cheap), at least a third.
-  EXPECT_GE(3 * b.summary.run.factor_updates, b.summary.run.factor_updates + b.summary.run.factorizations);
+  // Each step's first pass has new geometry and factorises; of the passes after it at least
+  // half are updates even on so small a wall (100 bricks: a factorisation is cheap). Measured
+  // at .12.02.2: 131 updates of the 175 passes after a step's first (1322 of 1455 at .12.02.1,
+  // when the wall's capped locks took more passes to let go, open_close_iterate.cpp).
+  const RunCounters& run = b.summary.run;  // every attempt at a step (cut or stiffer) starts afresh
+  const long later_passes = run.open_close_iterations - run.steps - run.step_cuts - run.penalty_raises;
+  EXPECT_GT(later_passes, 0);
+  EXPECT_GE(2 * run.factor_updates, later_passes);
   EXPECT_EQ(b.summary.run.open_close_iterations, a.summary.run.open_close_iterations);
   for (size_t p = 0; p < a.summary.points.size(); ++p) {
     const double da = a.summary.points[p].max_total_displacement, db = b.summary.points[p].max_total_displacement;

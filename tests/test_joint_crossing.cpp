@@ -358,6 +358,43 @@ TEST_P(ShortBlocksSweep, SlidersAStableSlopeHoldsStayOrStopAsSeedEq4Says) {
           }
 }
 
+// Sliders from rest at coarse steps (5 and 10 ms), the start of every released slope: slopes
+// of 10-40 deg, 1-8 deg steeper than the friction (a net acceleration down to 0.17 m/s^2),
+// sliders of 0.5-3 m, joints every 0.08-2.5 m; 480 runs. Until revision 2026-12-02.2 the
+// implicit solver's first steps stopped at the pass limit with capped locks still letting go,
+// and 73 of 240 fell more than 1 % behind seed Eq. 4 (27 % worst: 10 deg, 7 deg friction, a
+// 1.2 m slider over 0.08 m joints, 10 ms), a lag of about one step's worth of velocity that
+// never closes (open_close_iterate.cpp, kStartingExtraPasses). Measured at .12.02.2: the
+// implicit solver within 0.89 %.
+void expect_sliders_from_rest_follow_eq4_at_coarse_steps(Integrator integrator) {
+  double worst = 0.0;
+  std::string worst_label;
+  for (const double step : {0.005, 0.01})
+    for (const double slope : {10.0, 20.0, 28.0, 35.0, 40.0})
+      for (const double margin : {1.0, 3.0, 5.0, 8.0})
+        for (const auto& [length, height] : {std::pair{0.5, 0.5}, std::pair{1.2, 0.6}, std::pair{3.0, 0.8}})
+          for (const double spacing : {0.08, 0.3, 1.0, 2.5}) {
+            Crossing c;
+            c.slope = slope, c.friction = slope - margin, c.length = length, c.height = height;
+            c.spacing = spacing, c.speed = 0.0, c.front_gap = 0.03;
+            Scene scene = crossing_scene(c, integrator);
+            scene.max_step = step;
+            const SimulationResult r = simulate(scene);
+            const std::string label = describe(c, integrator) + ", step " + std::to_string(step) + " s";
+            ASSERT_EQ(r.summary.status, RunStatus::Completed) << label << ": " << r.summary.message;
+            double when = 0.0;
+            const double error = displacement_error(r, c, &when);
+            EXPECT_LT(error, kDisplacementTolerance) << label << ": worst at t = " << when << " s";
+            if (error > worst) worst = error, worst_label = label;
+          }
+  std::cout << "[measured] 240 sliders from rest at 5 and 10 ms: worst displacement error " << worst << " ("
+            << worst_label << ")\n";
+}
+
+TEST(JointCrossingCoarseSteps, SlidersFromRestFollowSeedEq4Implicit) {
+  expect_sliders_from_rest_follow_eq4_at_coarse_steps(Integrator::Implicit);
+}
+
 INSTANTIATE_TEST_SUITE_P(JointCrossingShortBlocks, ShortBlocksSweep,
                          ::testing::Values(Integrator::Implicit, Integrator::Substep),
                          [](const ::testing::TestParamInfo<Integrator>& info) { return name_of(info.param); });

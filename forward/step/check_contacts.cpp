@@ -87,6 +87,12 @@ bool cap_lock(const Interface& face, const ContactManifold& m, ContactPoint& p, 
   return shear > kCapTolerance * limit && (shear - limit) / stiffness > step.contact_tolerance;
 }
 
+// A block slower at the step's start than kStartingSpeedRatio |g| dt (its centroid's speed;
+// a fixed block's is zero).
+bool starting(const Block& b, const StepParameters& step) {
+  return b.velocity.head<2>().norm() <= kStartingSpeedRatio * step.gravity.norm() * step.time_step;
+}
+
 }  // namespace
 
 ContactCheck check_contacts(const BlockSystem& s, ContactSet& contacts, const Eigen::VectorXd& d,
@@ -132,7 +138,10 @@ ContactCheck check_contacts(const BlockSystem& s, ContactSet& contacts, const Ei
         c.state = before;
         c.normal_force = before == ContactState::Open ? 0.0 : std::max(compression, 0.0);
         ++result.frozen;
-        if (before == ContactState::Locked && cap_lock(face, m, p, step)) ++result.capped;
+        if (before == ContactState::Locked && cap_lock(face, m, p, step)) {
+          ++result.capped;
+          if (starting(s.blocks[m.block_a], step) && starting(s.blocks[m.block_b], step)) ++result.capped_starting;
+        }
       }
       if (c.state != before) {
         ++c.state_changes;

@@ -17,6 +17,12 @@ namespace ddafit {
 // rest of that step's open-close iteration.
 constexpr int kFreezeAfterChanges = 2;
 
+// A block that starts its step slower than this many times |g| dt, the speed gravity adds
+// in one step, is starting to move (or at rest): its step's move is of the size of the slip
+// a capped lock still holds back, so that slip is not left at the pass limit
+// (open_close_iterate.cpp, kStartingExtraPasses).
+constexpr double kStartingSpeedRatio = 1.0;
+
 // A contact point: manifold and point index within it (for diagnoses).
 struct PointRef {
   int manifold = -1;
@@ -27,6 +33,7 @@ struct ContactCheck {
   int frozen = 0;                 // points held in their state because they cycle
   int changed = 0;                // points whose state differs from the last iterate
   int capped = 0;                 // frozen locked points softened to their cap (check_contacts.cpp)
+  int capped_starting = 0;        // of them, points between blocks starting to move (kStartingSpeedRatio)
   PointRef first_changed;         // one of them, for diagnoses
   double max_force_change = 0.0;  // largest change of a sliding point's N / largest N
 };
