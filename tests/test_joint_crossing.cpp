@@ -362,7 +362,7 @@ TEST_P(ShortBlocksSweep, SlidersAStableSlopeHoldsStayOrStopAsSeedEq4Says) {
 // of 10-40 deg, 1-8 deg steeper than the friction (a net acceleration down to 0.17 m/s^2),
 // sliders of 0.5-3 m, joints every 0.08-2.5 m; 480 runs. Until revision 2026-12-02.2 the
 // implicit solver's first steps stopped at the pass limit with capped locks still letting go,
-// and 73 of 240 fell more than 1 % behind seed Eq. 4 (27 % worst: 10 deg, 7 deg friction, a
+// and 73 of the 480 fell more than 1 % behind seed Eq. 4 (27 % worst: 10 deg, 7 deg friction, a
 // 1.2 m slider over 0.08 m joints, 10 ms), a lag of about one step's worth of velocity that
 // never closes (open_close_iterate.cpp, kStartingExtraPasses). Measured at .12.02.2: the
 // implicit solver within 0.89 %.
@@ -387,12 +387,20 @@ void expect_sliders_from_rest_follow_eq4_at_coarse_steps(Integrator integrator) 
             EXPECT_LT(error, kDisplacementTolerance) << label << ": worst at t = " << when << " s";
             if (error > worst) worst = error, worst_label = label;
           }
-  std::cout << "[measured] 240 sliders from rest at 5 and 10 ms: worst displacement error " << worst << " ("
+  std::cout << "[measured] 480 sliders from rest at 5 and 10 ms: worst displacement error " << worst << " ("
             << worst_label << ")\n";
 }
 
 TEST(JointCrossingCoarseSteps, SlidersFromRestFollowSeedEq4Implicit) {
   expect_sliders_from_rest_follow_eq4_at_coarse_steps(Integrator::Implicit);
+}
+
+// Known defect (docs/theory.md §13, Limits of the substep solver): two of the 480 fail, a 1.2 m
+// and a 0.5 m slider on a 40 deg slope at 39 deg friction over 0.08 m joints at 10 ms x 4 (3.0 %
+// and 1.9 % ahead of Eq. 4): the rigid plank's two relax sweeps swing in a two-cycle, every
+// substep ending with the rear sinking. Enabled once the sweeps converge there.
+TEST(JointCrossingCoarseSteps, DISABLED_SlidersFromRestFollowSeedEq4Substep) {
+  expect_sliders_from_rest_follow_eq4_at_coarse_steps(Integrator::Substep);
 }
 
 INSTANTIATE_TEST_SUITE_P(JointCrossingShortBlocks, ShortBlocksSweep,
