@@ -12,12 +12,12 @@ namespace {
 // the pass limit the spring still held back slip of the size of the step's whole move, and
 // the velocity update v1 = 2 d / dt - v0 carried the deficit on as a lag that never closes
 // (sliders from rest over joints at 10 ms steps: 27 of 144 more than 1 % behind seed Eq. 4,
-// 12.7 % worst; docs/theory.md, Known limits (g)). The softening needed up to 23 passes more
-// on those sliders (a 1.2 m slider over 1 m joints, 1 deg steeper than its friction): three
-// times the limit covers it. Not for faster blocks: their held-back slip is a small share of
-// their move, and given the passes a block driven into a free row at 2 m/s was pitched up
-// onto its front corner at a 5 ms step and rocked back at 14 % of its speed, where 0.5-2 ms
-// steps give 1-5 % (tests/test_impact_rebound.cpp).
+// 12.7 % worst; docs/theory.md, Known limits (g)). The softening took up to 23 passes more
+// in the wider class of tests/test_joint_crossing.cpp (a 1.2 m slider over 1 m joints, 1 deg
+// steeper than its friction): three times the limit covers it. Not for faster blocks: their
+// held-back slip is a small share of their move, and given the passes a block driven into a
+// free row at 2 m/s was pitched up onto its front corner at a 5 ms step and rocked back at
+// 14 % of its speed, where 0.5-2 ms steps give 1.8-5.1 % (tests/test_impact_rebound.cpp).
 constexpr int kStartingExtraPasses = 3;
 
 int point_count(const ContactSet& contacts) {
