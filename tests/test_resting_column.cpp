@@ -6,7 +6,9 @@
 // 10 ms x 3 but not at 20 ms x 4).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <iostream>
 #include <string>
 
 #include "forward/simulation.hpp"
@@ -62,9 +64,12 @@ struct Rest {
 };
 
 Rest run_column(int courses, int per_course, double w, StepSetting setting, bool split,
-                Integrator integrator = Integrator::Substep) {
+                Integrator integrator = Integrator::Substep, bool top_down = false) {
   Scene scene = column_scene(courses, per_course, w, setting, split);
   scene.options.integrator = integrator;
+  // The same column with its blocks listed from the top course down (the floor first): the
+  // contacts are then stored and swept in the other order.
+  if (top_down) std::reverse(scene.blocks.begin() + 1, scene.blocks.end());
   const SimulationResult r = simulate(scene);
   Rest out;
   out.completed = r.summary.status == RunStatus::Completed;
@@ -91,6 +96,23 @@ TEST(RestingColumn, SplitImpulsesHoldATenBlockColumnAtRest) {
       const Rest r = run_column(10, 1, w, st, true);
       const std::string where = std::to_string(w) + " m blocks, " + std::to_string(st.step) + " s x " +
                                 std::to_string(st.substeps) + ": " + r.message;
+      ASSERT_TRUE(r.completed) << where;
+      EXPECT_LT(r.last_second_speed, 0.01) << where;
+      EXPECT_LT(r.movement, 0.005) << where;
+    }
+}
+
+// Known defect (docs/theory.md §13, Limits of the substep solver): the same 18 columns listed
+// from the top course down. One fails: 16 m blocks at 10 ms x 3 still move at 0.0154 m/s over
+// the last second (bound 0.01; moved 1.2 mm); the other 17 hold. Which order the sweeps meet a
+// column's joints in decides whether it comes to rest. Enabled once the sweeps are indifferent
+// to the order.
+TEST(RestingColumn, DISABLED_SplitImpulsesHoldATenBlockColumnListedTopDown) {
+  for (double w : kSizes)
+    for (StepSetting st : kResting) {
+      const Rest r = run_column(10, 1, w, st, true, Integrator::Substep, true);
+      const std::string where = std::to_string(w) + " m blocks, " + std::to_string(st.step) + " s x " +
+                                std::to_string(st.substeps) + ", listed top down: " + r.message;
       ASSERT_TRUE(r.completed) << where;
       EXPECT_LT(r.last_second_speed, 0.01) << where;
       EXPECT_LT(r.movement, 0.005) << where;
@@ -129,18 +151,24 @@ TEST(RestingColumn, EitherSchemeHoldsTheColumnOrStopsWithADiagnosis) {
 }
 
 // The implicit solver, the reference, holds every column at every step of the sweep
-// including 20 ms: fastest point at most 6.4e-5 m/s over the last second, movement at most
-// 0.12 mm (the elastic shortening and contact compression of ten 32 m blocks), held to 0.01
-// m/s and 1 mm.
+// including 20 ms, listed from the floor up and from the top down: fastest point over the
+// last second at most 6.4e-5 m/s (floor up) and 1.1e-4 m/s (top down), movement at most 0.12 mm
+// and 0.87 mm (the elastic shortening and contact compression of ten 32 m blocks; the order
+// changes how the column settles into its contacts at the start, not whether it holds), held
+// to 0.01 m/s and 1 mm.
 TEST(RestingColumn, TheImplicitSolverHoldsEveryColumnAtRest) {
-  for (double w : kSizes)
-    for (StepSetting st : {StepSetting{0.005, 4}, StepSetting{0.01, 4}, StepSetting{0.02, 4}}) {
-      const Rest r = run_column(10, 1, w, st, false, Integrator::Implicit);
-      const std::string where = std::to_string(w) + " m blocks, " + std::to_string(st.step) + " s: " + r.message;
-      ASSERT_TRUE(r.completed) << where;
-      EXPECT_LT(r.last_second_speed, 0.01) << where;
-      EXPECT_LT(r.movement, 0.001) << where;
-    }
+  for (const bool top_down : {false, true})
+    for (double w : kSizes)
+      for (StepSetting st : {StepSetting{0.005, 4}, StepSetting{0.01, 4}, StepSetting{0.02, 4}}) {
+        const Rest r = run_column(10, 1, w, st, false, Integrator::Implicit, top_down);
+        const std::string where = std::to_string(w) + " m blocks, " + std::to_string(st.step) + " s" +
+                                  (top_down ? ", listed top down: " : ": ") + r.message;
+        ASSERT_TRUE(r.completed) << where;
+        EXPECT_LT(r.last_second_speed, 0.01) << where;
+        EXPECT_LT(r.movement, 0.001) << where;
+        std::cout << "[measured] implicit, " << where << " last-second speed " << r.last_second_speed
+                  << " m/s, movement " << r.movement << " m\n";
+      }
 }
 
 }  // namespace
