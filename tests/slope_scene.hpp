@@ -3,11 +3,11 @@
 // it, everything is in an anonymous namespace.
 #pragma once
 
-#include <algorithm>
 #include <functional>
 #include <sstream>
 
 #include "tests/contact_scene_audit.hpp"
+#include "tests/mirror.hpp"
 #include "verify/analytic.hpp"
 
 namespace ddafit {
@@ -132,28 +132,6 @@ struct SlideError {
 
 // The 1 % of the analytic displacement along the slope (test_joint_crossing.cpp says why).
 constexpr double kDisplacementTolerance = 0.01;
-
-// The scene reflected in the vertical axis (x -> -x): the same slope descending the other way,
-// every polygon turned back counter-clockwise, velocities and spins reflected. The physics is
-// the same; what changes is the order in which the blocks and their contacts are listed
-// relative to the motion, which a Gauss-Seidel sweep is not blind to (docs/theory.md §13).
-[[maybe_unused]] void mirror_scene(Scene& s) {
-  for (BlockInput& b : s.blocks) {
-    for (Vec2& v : b.polygon) v.x() = -v.x();
-    std::reverse(b.polygon.begin(), b.polygon.end());
-    b.velocity.x() = -b.velocity.x();
-    b.angular_velocity = -b.angular_velocity;
-  }
-  for (MeasurePoint& m : s.measure) m.at.x() = -m.at.x();
-}
-
-// A mirrored run's history reflected back, so that it reads as the unmirrored scene's.
-[[maybe_unused]] void mirror_history(SimulationResult& r) {
-  for (HistoryRow& row : r.history) {
-    row.displacement.x() = -row.displacement.x();
-    row.velocity.x() = -row.velocity.x();
-  }
-}
 
 // Largest relative error of the slider's displacement along the slope against seed Eq. 4
 // (Eq. 5 by RK4 when it degrades) over the outputs where it has moved 1 cm (slide_error).

@@ -361,10 +361,9 @@ TEST_P(ShortBlocksSweep, SlidersAStableSlopeHoldsStayOrStopAsSeedEq4Says) {
 // Sliders from rest at coarse steps (5 and 10 ms), the start of every released slope: slopes
 // of 10-40 deg, 1-8 deg steeper than the friction (a net acceleration down to 0.17 m/s^2),
 // sliders of 0.5-3 m, joints every 0.08-2.5 m; 480 runs, each on the slope descending to the
-// right and on its mirror image descending to the left (mirror_scene): the same physics with the
-// blocks and contacts listed the other way along the motion, which decides the order of a
-// Gauss-Seidel sweep (the substep solver's defect below fails at other sizes in the mirror, and
-// a class passed one way only is an instance). Until revision 2026-12-02.2 the
+// right and on its mirror image descending to the left (tests/mirror.hpp): the same physics met
+// in another order by the sweeps (the substep solver's defect below fails by different amounts
+// each way round; a class passed one way only is an instance). Until revision 2026-12-02.2 the
 // implicit solver's first steps stopped at the pass limit with capped locks still letting go,
 // and 73 of the 480 fell more than 1 % behind seed Eq. 4 (27 % worst: 10 deg, 7 deg friction, a
 // 1.2 m slider over 0.08 m joints, 10 ms), a lag of about one step's worth of velocity that
