@@ -7,7 +7,7 @@
 #include <sstream>
 
 #include "tests/contact_scene_audit.hpp"
-#include "tests/mirror.hpp"
+#include "forward/mirror.hpp"
 #include "verify/analytic.hpp"
 
 namespace ddafit {

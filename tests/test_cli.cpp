@@ -58,6 +58,45 @@ TEST(Cli, SimulateWithoutSceneRunsBuiltInCase) {
   EXPECT_TRUE(fs::exists(out / "history.csv"));
 }
 
+// --mirror runs the scene's mirror image and writes its results read back unmirrored
+// (forward/mirror.hpp): on the incline, one block on a plane (implicit solver), the same
+// history to rounding (1e-8 m; measured 2e-10 m, test_mirror.cpp) and the same header; with --vtk-interval, whose snapshots would be
+// the mirror's, it is refused with one line and exit 2.
+TEST(Cli, SimulateMirrorWritesTheHistoryReadBack) {
+  const fs::path plain = fs::path(DDAFIT_TEST_TMP) / "simulate_mirror" / "plain";
+  const fs::path mirror = fs::path(DDAFIT_TEST_TMP) / "simulate_mirror" / "mirror";
+  ASSERT_EQ(ddafit("simulate " + kIncline + " --out " + plain.string() + " --quiet", "simulate_mirror").code, 0);
+  const CommandResult r = ddafit("simulate " + kIncline + " --mirror --out " + mirror.string() + " --quiet",
+                                 "simulate_mirror");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto a = nlohmann::json::parse(slurp(plain / "summary.json"));
+  const auto b = nlohmann::json::parse(slurp(mirror / "summary.json"));
+  EXPECT_NEAR(a["points"]["P1"]["max_lateral_displacement"].get<double>(),
+              b["points"]["P1"]["max_lateral_displacement"].get<double>(), 1e-8);
+  std::ifstream ca(plain / "history.csv"), cb(mirror / "history.csv");
+  std::string la, lb;
+  int rows = 0;
+  while (std::getline(ca, la) && std::getline(cb, lb)) {
+    if (rows++ == 0) {
+      EXPECT_EQ(la, lb);  // the same header
+      continue;
+    }
+    std::stringstream sa(la), sb(lb);
+    std::string fa, fb;
+    for (int field = 0; std::getline(sa, fa, ',') && std::getline(sb, fb, ','); ++field) {
+      if (field < 2) continue;  // time and point name
+      EXPECT_NEAR(std::stod(fa), std::stod(fb), 1e-8) << "row " << rows << ", field " << field;
+    }
+  }
+  EXPECT_EQ(rows, 202);
+  const CommandResult refused = ddafit("simulate " + kIncline + " --mirror --vtk-interval 0.1 --out " +
+                                           (fs::path(DDAFIT_TEST_TMP) / "simulate_mirror" / "vtk").string(),
+                                       "simulate_mirror");
+  EXPECT_EQ(refused.code, 2);
+  EXPECT_NE(refused.err.find("--mirror"), std::string::npos) << refused.err;
+  EXPECT_EQ(std::count(refused.err.begin(), refused.err.end(), '\n'), 1) << refused.err;
+}
+
 TEST(Cli, MalformedSceneExitsTwoWithOneLine) {
   const fs::path scene = write_scene("bad_yaml", "time: {duration: 1, step: [\n");
   const CommandResult r = ddafit("simulate " + scene.string() + " --out /tmp/ddafit-never", "bad_yaml");

@@ -20,7 +20,7 @@
 #include <vector>
 
 #include "forward/simulation.hpp"
-#include "tests/mirror.hpp"
+#include "forward/mirror.hpp"
 #include "verify/cases.hpp"
 
 namespace ddafit {
@@ -46,7 +46,7 @@ struct Case {
   Integrator integrator;
   double gap = 0.001;  // m, between the striker and the struck blocks at t = 0
   double friction = 30.0;  // deg, on every interface
-  bool mirrored = false;   // run as the scene's mirror image (tests/mirror.hpp), read back unmirrored
+  bool mirrored = false;   // run as the scene's mirror image (forward/mirror.hpp), read back unmirrored
 };
 
 std::string label(const Case& c) {
@@ -151,9 +151,9 @@ double momentum_beyond_friction(const Case& c, const std::vector<HistoryRow>& hi
 // A case's run, mirrored if it asks (its history read back as the unmirrored scene's).
 SimulationResult run_case(const Case& c) {
   Scene scene = scene_of(c);
-  if (c.mirrored) mirror_scene(scene);
+  if (c.mirrored) scene = mirrored_scene(scene);
   SimulationResult r = simulate(scene);
-  if (c.mirrored) mirror_history(r);
+  if (c.mirrored) unmirror_history(r.history);
   return r;
 }
 
@@ -379,7 +379,7 @@ TEST(ImpactRebound, ASlowBlockDrivenIntoAWalledRowIsNotThrownBackSubstep) {
   expect_inelastic(Shape::WalledRow, Integrator::Substep, {0.3, 1.0}, 48);
 }
 
-// The rows mirrored (tests/mirror.hpp): the striker driven in from the right. The same
+// The rows mirrored (forward/mirror.hpp): the striker driven in from the right. The same
 // physics, met in another order by the sweeps, the open-close iteration and the narrow
 // phase's tie-breaks. Measured 2026-12-02: the implicit solver's 48 walled-row impacts within
 // their bounds both ways round; the other three sweeps each have cases over their bound in the

@@ -32,6 +32,7 @@ struct SimulateArgs {
   bool quiet = false;
   double vtk_interval = 0.0;  // s between VTK snapshots; 0 = none
   bool plots = false;         // PNG charts of the history
+  bool mirror = false;        // run the mirror image (forward/mirror.hpp), results read back unmirrored
   int ensemble = 0;           // > 0: run this many realisations (forward/perturb.hpp) and their spread
   int jobs = 1;               // --ensemble: realisations at a time
   double jitter = 0.0;        // --ensemble: largest nudge / block size; 0 = kJitterRatio

@@ -73,6 +73,9 @@ int main(int argc, char** argv) {
   simulate->add_option("--vtk-interval", sim.vtk_interval, "write DIR/vtk/blocks_NNNNN.vtk every this many s")
       ->check(within(0.0, 1e6));
   simulate->add_flag("--plots", sim.plots, "draw distance/velocity charts (PNG, needs gnuplot)");
+  simulate->add_flag("--mirror", sim.mirror,
+                     "run the scene's mirror image (x -> -x) and write its results read back unmirrored: how much "
+                     "the answer depends on the order the solver meets the blocks in (docs/speed-accuracy.md)");
   simulate->add_option("--ensemble", sim.ensemble,
                        "run K realisations (0: the scene; k >= 1: free blocks nudged by <= --jitter of their size) and "
                        "write their spread to ensemble.json, ensemble.csv and ensemble.png")

@@ -15,6 +15,7 @@
 #include "apps/ddafit/plots.hpp"
 #include "apps/ddafit/vtk_writer.hpp"
 #include "forward/io/scene_reader.hpp"
+#include "forward/mirror.hpp"
 #include "forward/simulation.hpp"
 #include "verify/cases.hpp"
 
@@ -92,8 +93,16 @@ int run_simulate(const SimulateArgs& args) {
     std::cerr << problem << "\n";
     return kExitBadInput;
   }
+  if (args.mirror && (args.ensemble > 0 || args.vtk_interval > 0.0)) {
+    std::cerr << "ddafit simulate: --mirror writes the history and summary read back unmirrored; it does not combine "
+                 "with --ensemble or --vtk-interval\n";
+    return kExitBadInput;
+  }
   if (args.ensemble > 0) return run_ensemble_command(args, scene, label);
   std::error_code ec;
+  // The scene as run: the file's, or its mirror image (forward/mirror.hpp).
+  const Scene run_scene = args.mirror ? mirrored_scene(scene) : scene;
+  if (args.mirror) label += " (mirrored)";
 
   SimulationHooks hooks;
   std::string vtk_problem;
@@ -118,9 +127,12 @@ int run_simulate(const SimulateArgs& args) {
       if (vtk_output) vtk_output(t, system);
       final_blocks.clear();
       for (const Block& b : system.blocks)
-        if (!b.fixed)
+        if (!b.fixed) {
           final_blocks.emplace_back(system.vertices.begin() + b.first_vertex,
                                     system.vertices.begin() + b.first_vertex + b.vertex_count);
+          if (args.mirror)
+            for (Vec2& v : final_blocks.back()) v.x() = -v.x();  // drawn as the scene's own
+        }
     };
   }
   if (!args.quiet) {
@@ -135,7 +147,8 @@ int run_simulate(const SimulateArgs& args) {
   }
   batch::note_stop_signals();
   hooks.should_stop = [] { return batch::stop_signal() != 0; };
-  const SimulationResult result = simulate(scene, hooks);
+  SimulationResult result = simulate(run_scene, hooks);
+  if (args.mirror) unmirror_history(result.history);
   if (!args.quiet) std::cerr << "\r" << std::string(72, ' ') << "\r";
 
   const std::string history = (std::filesystem::path(args.out) / "history.csv").string();
