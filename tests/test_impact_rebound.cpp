@@ -47,6 +47,7 @@ struct Case {
   double gap = 0.001;  // m, between the striker and the struck blocks at t = 0
   double friction = 30.0;  // deg, on every interface
   bool mirrored = false;   // run as the scene's mirror image (forward/mirror.hpp), read back unmirrored
+  bool reversed = false;   // the scene's blocks listed in the reverse order (the measure points are places)
 };
 
 std::string label(const Case& c) {
@@ -55,7 +56,7 @@ std::string label(const Case& c) {
   std::snprintf(text, sizeof text, "%s: %g m block at %g m/s %s %d blocks %g m thick, friction %g deg, %g ms x %d",
                 c.integrator == Integrator::Implicit ? "implicit" : "substep", c.size, c.speed, shape, c.count,
                 c.ratio * c.size, c.friction, c.step * 1000, c.substeps);
-  return c.mirrored ? std::string(text) + ", mirrored" : std::string(text);
+  return std::string(text) + (c.mirrored ? ", mirrored" : "") + (c.reversed ? ", blocks listed in reverse" : "");
 }
 
 // The struck blocks rest on a fixed floor (a stack: one on another; a row: side by side, the
@@ -151,6 +152,7 @@ double momentum_beyond_friction(const Case& c, const std::vector<HistoryRow>& hi
 // A case's run, mirrored if it asks (its history read back as the unmirrored scene's).
 SimulationResult run_case(const Case& c) {
   Scene scene = scene_of(c);
+  if (c.reversed) std::reverse(scene.blocks.begin(), scene.blocks.end());
   if (c.mirrored) scene = mirrored_scene(scene);
   SimulationResult r = simulate(scene);
   if (c.mirrored) unmirror_history(r.history);
@@ -158,7 +160,8 @@ SimulationResult run_case(const Case& c) {
 }
 
 Sweep sweep(Shape shape, Integrator integrator, std::initializer_list<double> speeds,
-            std::initializer_list<int> counts, std::initializer_list<double> frictions, bool mirrored = false) {
+            std::initializer_list<int> counts, std::initializer_list<double> frictions, bool mirrored = false,
+            bool reversed = false) {
   Sweep out;
   for (const double size : {1.0, 4.0})
     for (const double speed : speeds)
@@ -169,6 +172,7 @@ Sweep sweep(Shape shape, Integrator integrator, std::initializer_list<double> sp
               Case c{shape, size, speed, ratio, count, step, substeps, integrator};
               c.friction = friction;
               c.mirrored = mirrored;
+              c.reversed = reversed;
               const SimulationResult r = run_case(c);
               const std::string text = label(c);
               EXPECT_EQ(r.summary.status, RunStatus::Completed) << text << ": " << r.summary.message;
@@ -200,8 +204,8 @@ Sweep sweep(Shape shape, Integrator integrator, std::initializer_list<double> sp
 // Free rows: the floor took no more momentum than its friction gives (kMomentumBound).
 void expect_inelastic(Shape shape, Integrator integrator, std::initializer_list<double> speeds, int runs,
                       std::initializer_list<int> counts = {3, 6, 10}, std::initializer_list<double> frictions = {30.0},
-                      bool mirrored = false) {
-  const Sweep s = sweep(shape, integrator, speeds, counts, frictions, mirrored);
+                      bool mirrored = false, bool reversed = false) {
+  const Sweep s = sweep(shape, integrator, speeds, counts, frictions, mirrored, reversed);
   EXPECT_EQ(s.runs, runs);
   EXPECT_LE(s.worst_excess, 0.0) << s.worst_case;
   EXPECT_LE(s.worst_overlap, kOverlapBound);
@@ -406,6 +410,30 @@ TEST(ImpactRebound, DISABLED_ABlockDrivenIntoAFreeRowMirroredIsNotThrownBackImpl
 
 TEST(ImpactRebound, DISABLED_ASlowBlockDrivenIntoAWalledRowMirroredIsNotThrownBackSubstep) {
   expect_inelastic(Shape::WalledRow, Integrator::Substep, {0.3, 1.0}, 48, {3, 6, 10}, {30.0}, true);
+}
+
+// The same scenes with their blocks listed in the reverse order (striker first, floor last):
+// the same physics again, met in another order. Found 2026-12-02 by an exploratory build that
+// reversed the blocks of every scene given as blocks and ran the whole suite. Known defects:
+//   - substep: free rows 9.1 % of 2 m/s (4 m block, six 1 m blocks, 45 deg, 10 ms x 3; excess
+//     over the bound 0.018), walled rows 19.3 % of 1 m/s (1 m block, three 0.25 m blocks,
+//     10 ms x 3; excess 0.045), columns of twenty 9.5 % of 10 m/s (excess 0.040);
+//   - implicit: the free row's 1 m block at 5 m/s into three 0.25 m blocks at 45 deg, 10 ms
+//     gives the floor 45 % of the impact's momentum beyond its friction, as in the mirror.
+// Elsewhere in the suite listed in reverse: tests/test_impact_depth.cpp's implicit rows rebound at
+// 10.03 % (bound 10 %) and the 100-brick standing wall of tests/test_stability.cpp needs one
+// step cut (none listed as built); every other enabled test passes.
+TEST(ImpactRebound, DISABLED_ImpactsWithTheBlocksListedInReverseDoNotBounceOffSubstep) {
+  expect_inelastic(Shape::FreeRow, Integrator::Substep, {1.0, 2.0, 5.0, 10.0}, 192, {3, 6, 10}, {30.0, 45.0}, false,
+                   true);
+  expect_inelastic(Shape::WalledRow, Integrator::Substep, {0.3, 1.0}, 48, {3, 6, 10}, {30.0}, false, true);
+  expect_inelastic(Shape::Stack, Integrator::Substep, {2.0, 5.0, 10.0}, 24, {20}, {30.0}, false, true);
+}
+
+TEST(ImpactRebound, DISABLED_ImpactsWithTheBlocksListedInReverseDoNotBounceOffImplicit) {
+  expect_inelastic(Shape::FreeRow, Integrator::Implicit, {1.0, 2.0, 5.0, 10.0}, 192, {3, 6, 10}, {30.0, 45.0}, false,
+                   true);
+  expect_inelastic(Shape::WalledRow, Integrator::Implicit, {0.3, 1.0}, 48, {3, 6, 10}, {30.0}, false, true);
 }
 
 // A velocity given to a block waits for the clock (the quiet start settles the touching blocks
