@@ -4,6 +4,7 @@
 // outlines N x 2 arrays. A scene or study that cannot be used raises ValueError with the
 // one line the command line prints; long calls release the GIL and stop on Ctrl-C
 // (the run's status is then "interrupted", and the package raises ddafit.Interrupted).
+#include <algorithm>
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
@@ -20,6 +21,7 @@
 #include "forward/io/run_files.hpp"
 #include "forward/io/scene_reader.hpp"
 #include "forward/model_revision.hpp"
+#include "forward/mirror.hpp"
 #include "forward/simulation.hpp"
 #include "inverse/hypotheses.hpp"
 #include "inverse/inversion.hpp"
@@ -93,8 +95,10 @@ struct PyResult {
   py::list fixed;   // per block
 };
 
-PyResult simulate_scene(const py::object& scene_or_path, int threads, const py::dict& settings) {
+PyResult simulate_scene(const py::object& scene_or_path, int threads, const py::dict& settings, bool mirror) {
   const PyScene s = scene_from(scene_or_path, settings);
+  // --mirror of the command line (forward/mirror.hpp): the mirror image run, read back.
+  const Scene run_scene = mirror ? mirrored_scene(s.scene) : s.scene;
   batch::set_thread_budget(threads);  // 0: one per core; BLAS held to one (thread_budget.hpp)
   std::vector<std::vector<Vec2>> outlines;
   std::vector<bool> fixed;
@@ -108,13 +112,18 @@ PyResult simulate_scene(const py::object& scene_or_path, int threads, const py::
       for (const Block& b : system.blocks) {
         outlines.emplace_back(system.vertices.begin() + b.first_vertex,
                               system.vertices.begin() + b.first_vertex + b.vertex_count);
+        if (mirror) {  // reflected back, corners in the scene's order again
+          for (Vec2& v : outlines.back()) v.x() = -v.x();
+          std::reverse(outlines.back().begin(), outlines.back().end());
+        }
         fixed.push_back(b.fixed);
       }
     };
     hooks.should_stop = [&] { return check(); };
     py::gil_scoped_release release;
-    result = simulate(s.scene, hooks);
+    result = simulate(run_scene, hooks);
   }
+  if (mirror) unmirror_history(result.history);
   if (result.summary.status == RunStatus::InvalidScene) throw py::value_error(s.path + ": " + result.summary.message);
   PyResult r;
   r.summary = json_loads(io::summary_json_text(s.path, result));
@@ -212,7 +221,8 @@ PYBIND11_MODULE(_core, m) {
       .def_readonly("blocks", &PyResult::blocks)
       .def_readonly("fixed", &PyResult::fixed);
   m.def("load_scene", &load, py::arg("path"), py::arg("settings") = py::dict());
-  m.def("simulate", &simulate_scene, py::arg("scene"), py::arg("threads") = 0, py::arg("settings") = py::dict());
+  m.def("simulate", &simulate_scene, py::arg("scene"), py::arg("threads") = 0, py::arg("settings") = py::dict(),
+        py::arg("mirror") = false);
   m.def("stable", &stable_search, py::arg("scene"), py::arg("interface"), py::arg("low") = 5.0, py::arg("high") = 45.0,
         py::arg("tolerance") = 0.5, py::arg("trial") = 10.0, py::arg("rest_window") = 1.0, py::arg("movement") = 0.0,
         py::arg("settings") = py::dict());

@@ -61,12 +61,15 @@ def mesh(scene, block_size=None, set=None):
     return load_scene(scene, settings)
 
 
-def simulate(scene, threads=0, set=None):
+def simulate(scene, threads=0, set=None, mirror=False):
     """Runs the scene (a Scene or a path): a Result with .summary (the dict of
     summary.json), .history ({point: {"time", "x", "y", "ux", "uy", "vx", "vy"}} of NumPy
     arrays), .blocks (outlines at the last output) and .fixed. A run that fails keeps
-    status "failed" and its message in the summary; an unusable scene raises ValueError."""
-    result = _core.simulate(_scene_or_path(scene), int(threads), _settings(set))
+    status "failed" and its message in the summary; an unusable scene raises ValueError.
+    mirror=True runs the scene's mirror image (x -> -x) and returns it read back as the
+    scene's own, as `ddafit simulate --mirror` does: its difference from the plain run is
+    the answer's dependence on the order the solver meets the blocks in."""
+    result = _core.simulate(_scene_or_path(scene), int(threads), _settings(set), bool(mirror))
     if result.summary["status"] == "interrupted":
         raise Interrupted(result)
     return result

@@ -37,6 +37,18 @@ def test_a_slider_follows_seed_eq_4_through_the_history_arrays():
     assert run.summary["points"]["P1"]["max_total_displacement"] == pytest.approx(along.max(), abs=1e-9)
 
 
+def test_the_mirror_image_reads_back_as_the_scene():
+    # One block on a plane: the mirror differs from the scene by rounding only (2e-10 m on
+    # the implicit solver, tests/test_mirror.cpp), and its history and outlines read back
+    # unmirrored.
+    plain = ddafit.simulate(incline_no_degradation(), threads=1)
+    mirror = ddafit.simulate(incline_no_degradation(), threads=1, mirror=True)
+    assert mirror.summary["status"] == "completed"
+    for key in ("x", "y", "ux", "uy", "vx", "vy"):
+        np.testing.assert_allclose(mirror.history["P1"][key], plain.history["P1"][key], atol=1e-8)
+    np.testing.assert_allclose(np.asarray(mirror.blocks[-1]), np.asarray(plain.blocks[-1]), atol=1e-8)
+
+
 def test_settings_read_and_change_by_key_and_bad_ones_raise_the_cli_line():
     scene = ddafit.load_scene(INCLINE, set={"time.duration": 0.5})
     assert scene["time.duration"] == 0.5
