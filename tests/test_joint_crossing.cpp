@@ -402,12 +402,12 @@ TEST(JointCrossingCoarseSteps, SlidersFromRestFollowSeedEq4Implicit) {
   expect_sliders_from_rest_follow_eq4_at_coarse_steps(Integrator::Implicit);
 }
 
-// Known defect (docs/theory.md §13, Limits of the substep solver): two of the 480 fail each
-// way down, a 1.2 m and a 0.5 m slider on a 40 deg slope at 39 deg friction over 0.08 m joints
-// at 10 ms x 4 (3.0 % and 1.9 % ahead of Eq. 4 descending to the right, 3.8 % and 2.9 % to the
-// left): the rigid plank's two relax sweeps swing in a two-cycle, every substep ending with the
-// rear sinking. Enabled once the sweeps converge there.
-TEST(JointCrossingCoarseSteps, DISABLED_SlidersFromRestFollowSeedEq4Substep) {
+// Until model revision 2026-12-02.3 two of the 480 failed each way down, a 1.2 m and a 0.5 m
+// slider on a 40 deg slope at 39 deg friction over 0.08 m joints at 10 ms x 4 (3.0 % and 1.9 %
+// ahead of Eq. 4 descending to the right, 3.8 % and 2.9 % to the left): the rigid plank's two
+// relax sweeps swung in a two-cycle, every substep ending with the rear sinking. The sweeps
+// now meet the manifolds from the lowest up (prepare_contacts.hpp, colour_manifolds).
+TEST(JointCrossingCoarseSteps, SlidersFromRestFollowSeedEq4Substep) {
   expect_sliders_from_rest_follow_eq4_at_coarse_steps(Integrator::Substep);
 }
 

@@ -110,7 +110,8 @@ SweepSettings prepare_step(SubstepContext& w, double h) {
   prepare_contacts(w, h, kDeepOverlap);
   w.state.deep.assign(w.contacts.manifolds.size(), 0);
   w.state.of_block.reset();
-  w.colours = colour_manifolds(s, w.contacts.manifolds);
+  const double g = w.scene.gravity.norm();
+  w.colours = colour_manifolds(s, w.contacts.manifolds, g > 0.0 ? Vec2(-w.scene.gravity / g) : Vec2::Zero());
   if (w.sleep.enabled()) drop_sleeping_manifolds(w.contacts.manifolds, w.state.masses, w.colours);
   // The contact spring at an eighth of the substep rate, Box2D's ratio (30 Hz at 240 Hz),
   // without its 30 Hz cap: at 30 Hz a stack of five 1 m blocks sank 1 cm into its

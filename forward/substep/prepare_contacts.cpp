@@ -60,10 +60,24 @@ void prepare_contacts(SubstepContext& ctx, double h, double deep_overlap) {
   }
 }
 
-std::vector<std::vector<int>> colour_manifolds(const BlockSystem& s, const std::vector<ContactManifold>& manifolds) {
+std::vector<std::vector<int>> colour_manifolds(const BlockSystem& s, const std::vector<ContactManifold>& manifolds,
+                                               const Vec2& up) {
   std::vector<std::vector<int>> colours(kSerialColour + 1);
   std::vector<std::uint64_t> used(s.blocks.size(), 0);
-  for (int k = 0; k < static_cast<int>(manifolds.size()); ++k) {
+  // The manifolds from the lowest up: each one's height is the mean of its points' along `up`.
+  const int n = static_cast<int>(manifolds.size());
+  std::vector<double> height(manifolds.size(), 0.0);
+#pragma omp parallel for schedule(static) if (n >= kParallelMinimum)
+  for (int k = 0; k < n; ++k) {
+    const ContactManifold& m = manifolds[k];
+    double sum = 0.0;
+    for (int q = 0; q < m.point_count; ++q) sum += m.points[q].anchor.dot(up);
+    height[k] = m.point_count > 0 ? sum / m.point_count : 0.0;
+  }
+  std::vector<int> order(manifolds.size());
+  for (int k = 0; k < n; ++k) order[k] = k;
+  std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return height[a] < height[b]; });
+  for (const int k : order) {
     const ContactManifold& m = manifolds[k];
     const bool fa = s.blocks[m.block_a].fixed, fb = s.blocks[m.block_b].fixed;
     // A fixed block never changes velocity, so it does not constrain the colouring.
