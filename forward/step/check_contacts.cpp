@@ -77,12 +77,14 @@ void classify(const Interface& face, const ContactManifold& m, ContactPoint& p, 
 // short blocks fell up to 1.7 % behind seed Eq. 4; counted as state changes, the settling
 // courses of standing brick walls still "changed" at the pass limit, and the steps were cut (6
 // cuts in 10 ms on 100 bricks), which is why they only hold the iteration open.
-bool cap_lock(const Interface& face, const ContactManifold& m, ContactPoint& p, const StepParameters& step) {
+bool cap_lock(const Interface& face, const ContactManifold& m, ContactPoint& p, const StepParameters& step,
+              double& excess) {
   SpringState& c = p.spring;
   const double limit = coulomb_cap(m.friction, c.normal_force, cohesive_strength(face, p));
   const double stiffness = locked_shear_stiffness(c, step);
   const double shear = std::abs(stiffness * (c.shear_offset + c.step_slip));
   if (!(shear > limit)) return false;
+  excess = std::max(excess, shear - limit);
   c.shear_scale = static_cast<float>(c.shear_scale * (limit / shear));
   return shear > kCapTolerance * limit && (shear - limit) / stiffness > step.contact_tolerance;
 }
@@ -98,7 +100,7 @@ bool starting(const Block& b, const StepParameters& step) {
 ContactCheck check_contacts(const BlockSystem& s, ContactSet& contacts, const Eigen::VectorXd& d,
                             const StepParameters& step) {
   ContactCheck result;
-  double largest_change = 0.0, largest_force = 0.0;
+  double largest_change = 0.0, largest_force = 0.0, cap_excess = 0.0;
   for (int k = 0; k < static_cast<int>(contacts.manifolds.size()); ++k) {
     ContactManifold& m = contacts.manifolds[k];
     const Vec6 da = block_step(s.blocks[m.block_a], d), db = block_step(s.blocks[m.block_b], d);
@@ -138,7 +140,7 @@ ContactCheck check_contacts(const BlockSystem& s, ContactSet& contacts, const Ei
         c.state = before;
         c.normal_force = before == ContactState::Open ? 0.0 : std::max(compression, 0.0);
         ++result.frozen;
-        if (before == ContactState::Locked && cap_lock(face, m, p, step)) {
+        if (before == ContactState::Locked && cap_lock(face, m, p, step, cap_excess)) {
           ++result.capped;
           if (starting(s.blocks[m.block_a], step) && starting(s.blocks[m.block_b], step)) ++result.capped_starting;
         }
@@ -157,6 +159,7 @@ ContactCheck check_contacts(const BlockSystem& s, ContactSet& contacts, const Ei
   // Relative to the largest contact force: a nearly unloaded point whose N changes by
   // half of nothing does not hold up the iteration.
   result.max_force_change = largest_force > 0.0 ? largest_change / largest_force : 0.0;
+  result.cap_excess = largest_force > 0.0 ? cap_excess / largest_force : 0.0;
   return result;
 }
 

@@ -36,6 +36,9 @@ struct ContactCheck {
   int capped_starting = 0;        // of them, points between blocks starting to move (kStartingSpeedRatio)
   PointRef first_changed;         // one of them, for diagnoses
   double max_force_change = 0.0;  // largest change of a sliding point's N / largest N
+  // Largest excess of a capped lock's shear force over its Coulomb cap in this iterate,
+  // |k_s (d_s0 + d_s)| - (N tan(phi) + c l), over the largest N (judge_step.cpp).
+  double cap_excess = 0.0;
 };
 
 ContactCheck check_contacts(const BlockSystem& system, ContactSet& contacts, const Eigen::VectorXd& d,

@@ -83,6 +83,7 @@ OpenCloseResult open_close_iterate(ImplicitStepContext& ctx, const StepParameter
     if (settled || (last && check.changed == 0) || nearly) {
       result.converged = true;
       result.unsettled = check.changed;
+      result.cap_excess = check.cap_excess;
       return result;
     }
     result.unsettled_contact = check.first_changed;

@@ -22,6 +22,7 @@ struct OpenCloseResult {
   int iterations = 0;
   PointRef unsettled_contact;  // a point still changing state when the iteration gave up
   int unsettled = 0;           // contacts accepted while still changing on the last pass
+  double cap_excess = 0.0;     // of the accepted iterate (ContactCheck::cap_excess)
   std::string reason;
 };
 
