@@ -13,6 +13,7 @@
 #include <tuple>
 #include <vector>
 
+#include "forward/substep/prepare_contacts.hpp"
 #include "forward/substep/solve_contacts.hpp"
 
 namespace ddafit {
@@ -128,6 +129,35 @@ TEST(ColouredSweep, BatchesGiveTheNumbersOfOneManifoldAtATime) {
         }
   // The largest systems' colours reach the shared loop (kColourParallelMinimum, 64).
   EXPECT_GE(colour_sizes_seen, 64);
+}
+
+// The colouring's order (colour_manifolds): order_by_key must give exactly std::stable_sort's
+// order, ties in id order, or the sweeps would meet the manifolds in another order and the
+// answer would move. Keys of both signs and magnitudes from 1e-300 to 1e300, many ties (keys
+// rounded to a few levels, as the manifolds of one course of bricks or one row share a
+// height), -0.0 beside 0.0 (equal under <), and sizes 0, 1, 2 and up to 20 000.
+TEST(ColourOrder, RadixOrderIsTheStableSortOrder) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  std::uniform_int_distribution<int> exponent(-300, 300), level(-3, 3), kind(0, 3);
+  for (const int n : {0, 1, 2, 17, 256, 257, 5000, 20000})
+    for (int trial = 0; trial < 3; ++trial) {
+      std::vector<double> key(n);
+      for (double& k : key) {
+        switch (kind(rng)) {
+          case 0: k = unit(rng) * std::pow(10.0, exponent(rng)); break;
+          case 1: k = 0.5 * level(rng); break;
+          case 2: k = unit(rng) < 0.0 ? -0.0 : 0.0; break;
+          default: k = 1000.0 + unit(rng); break;
+        }
+      }
+      std::vector<int> expected(n);
+      for (int i = 0; i < n; ++i) expected[i] = i;
+      std::stable_sort(expected.begin(), expected.end(), [&](int a, int b) { return key[a] < key[b]; });
+      std::vector<int> order;
+      order_by_key(key, order);
+      ASSERT_EQ(order, expected) << n << " keys, trial " << trial;
+    }
 }
 
 }  // namespace

@@ -60,6 +60,39 @@ void prepare_contacts(SubstepContext& ctx, double h, double deep_overlap) {
   }
 }
 
+void order_by_key(const std::vector<double>& key, std::vector<int>& order) {
+  const size_t n = key.size();
+  // A double's bits as an unsigned integer in the same order: negative numbers with every
+  // bit flipped, the others with the sign bit set. Adding 0.0 turns -0.0 into 0.0.
+  struct Item {
+    std::uint64_t bits;
+    int id;
+  };
+  std::vector<Item> items(n), spare(n);
+  std::uint64_t counts[8][256] = {};
+  for (size_t i = 0; i < n; ++i) {
+    const std::uint64_t b = std::bit_cast<std::uint64_t>(key[i] + 0.0);
+    items[i] = {(b >> 63) ? ~b : b | (std::uint64_t{1} << 63), static_cast<int>(i)};
+    for (int d = 0; d < 8; ++d) ++counts[d][(items[i].bits >> (8 * d)) & 0xff];
+  }
+  // Each pass is stable, so the items end in key order with ties in id order. A byte that
+  // every key shares (the exponent's, over one slope) is skipped.
+  for (int d = 0; d < 8; ++d) {
+    std::uint64_t* count = counts[d];
+    if (n == 0 || count[(items[0].bits >> (8 * d)) & 0xff] == n) continue;
+    std::uint64_t start = 0;
+    for (int v = 0; v < 256; ++v) {
+      const std::uint64_t c = count[v];
+      count[v] = start;
+      start += c;
+    }
+    for (const Item& item : items) spare[count[(item.bits >> (8 * d)) & 0xff]++] = item;
+    items.swap(spare);
+  }
+  order.resize(n);
+  for (size_t i = 0; i < n; ++i) order[i] = items[i].id;
+}
+
 std::vector<std::vector<int>> colour_manifolds(const BlockSystem& s, const std::vector<ContactManifold>& manifolds,
                                                const Vec2& up) {
   std::vector<std::vector<int>> colours(kSerialColour + 1);
@@ -74,9 +107,8 @@ std::vector<std::vector<int>> colour_manifolds(const BlockSystem& s, const std::
     for (int q = 0; q < m.point_count; ++q) sum += m.points[q].anchor.dot(up);
     height[k] = m.point_count > 0 ? sum / m.point_count : 0.0;
   }
-  std::vector<int> order(manifolds.size());
-  for (int k = 0; k < n; ++k) order[k] = k;
-  std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return height[a] < height[b]; });
+  std::vector<int> order;
+  order_by_key(height, order);
   for (const int k : order) {
     const ContactManifold& m = manifolds[k];
     const bool fa = s.blocks[m.block_a].fixed, fb = s.blocks[m.block_b].fixed;
