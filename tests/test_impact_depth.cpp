@@ -244,7 +244,7 @@ constexpr Steps kRowSteps = {{0.01, 3, 0.01}, {0.005, 4, 0.005}, {0.01, 3, 0.005
 // step's start, so the row's resting contacts met the struck block at their penalty
 // springs, which hand the approach back (V1 = 2 D / dt - V0). Since .27.8 a group closing
 // faster than |g| dt converges and the points its impulses set closing join it: 8.9 % worst;
-// 8.0 % since .28.1 (no closed point held in tension, test_impact_rebound.cpp's free rows).
+// 8.0 % since .28.1 (no closed point held in tension, test_impact_rows.cpp's free rows).
 // The rest is the blocks' own elasticity
 // (Shi's strain unknowns; the impulses move the blocks' rigid part only): with E 100 times
 // the 5 GPa here, 4.1 %. Hence twice the rigid bound, for the spring-back of elastic blocks.

@@ -131,7 +131,7 @@ ContactCheck check_contacts(const BlockSystem& s, ContactSet& contacts, const Ei
       // 2026-11-28.1 it did: a frozen point under 5 MN/m of tension held a row of tall blocks
       // down at one end while the other end's corner took 5 MN/m of compression, whose
       // friction stopped the sliding row within a step, and the step's velocity update then
-      // threw the row back at 0.4 of its speed (tests/test_impact_rebound.cpp, free rows).
+      // threw the row back at 0.4 of its speed (tests/test_impact_rows.cpp, free rows).
       const bool closing = before == ContactState::Open && c.state != ContactState::Open;
       const bool locking = before == ContactState::Sliding && c.state == ContactState::Locked;
       const bool opening = before != ContactState::Open && c.state == ContactState::Open &&

@@ -21,7 +21,7 @@ constexpr double kStepEnergyTolerance = 0.1;
 // Coulomb's law does not allow. A row of tall blocks struck sideways at 45 deg, mirrored,
 // tipped on its front corner with frozen locks at up to ten times their cap (their normal
 // forces fell twentyfold in the last pass), and the row and its striker leapt off the floor:
-// the floor took 45 % of the impact's momentum beyond its friction (tests/test_impact_rebound.cpp).
+// the floor took 45 % of the impact's momentum beyond its friction (tests/test_impact_rows.cpp).
 constexpr double kCapExcessTolerance = 0.1;
 
 // Largest displacement of any vertex over the step for the solved unknowns d.

@@ -29,7 +29,7 @@ void start_new_points(const BlockSystem& system, ContactSet& contacts, double dt
 // (N tan(phi)). Left locked, its shear spring meets the whole slip of the step (4 cm for a row
 // struck to 4 m/s at 10 ms): the first iterate's spring forces, a hundred times the blocks'
 // weight, pressed the row into the floor, and that normal force, as friction, stopped the row
-// within the step (tests/test_impact_rebound.cpp, free rows: in one step the floor took 1.8
+// within the step (tests/test_impact_rows.cpp, free rows: in one step the floor took 1.8
 // times the row's momentum, where its friction could take 1.4 %). Bonded points stay locked.
 // `shear_penalty`, N/m, pre-loads the spring at the friction force, as update_blocks does for
 // every sliding point. (Withdrawn at revision 2026-11-28.2, when it tipped the implicit Vajont

@@ -36,7 +36,7 @@ constexpr double kSpeedTolerance = 1e-4;
 // its blocks: the 1621-block standing wall's courses, settling at a few cm/s, had their bed
 // joints set sliding, and the open-close iteration could not settle them (20 step cuts and
 // 1897 passes in 150 steps, against none and 1200 before .28.4; bench/peer). Both limits were
-// measured on the implicit free-row test (tests/test_impact_rebound.cpp), whose floor must not
+// measured on the implicit free-row test (tests/test_impact_rows.cpp), whose floor must not
 // take more than 10 % of the striker's momentum beyond its friction: 0.075 with these, as with
 // |g| dt alone; collisions only (no steps after) 0.26; collisions beyond 10 |g| dt 0.46.
 constexpr double kCollisionSpeeds = 3.0;

@@ -23,7 +23,7 @@ struct ImpactConvergence {
   double spent = 0.0;    // m/s: a pushing point opening faster than this carries a spent impulse
   // A group is solved directly up to this many contact points (a dense solve); larger ones keep
   // the sweeps' answer. 160: rows and stacks of ten blocks with their floor and the manifolds
-  // within the contact margin (tests/test_impact_rebound.cpp; a walled row of ten 0.25 m blocks
+  // within the contact margin (tests/test_impact_rows.cpp; a walled row of ten 0.25 m blocks
   // struck at 10 m/s threw the striker back at 1.5 m/s with a cap of 40). Vajont section VII
   // degraded: 368,001 groups solved, 121,567 larger (docs/performance.md).
   int max_points = 160;
