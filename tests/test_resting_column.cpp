@@ -64,12 +64,15 @@ struct Rest {
 };
 
 Rest run_column(int courses, int per_course, double w, StepSetting setting, bool split,
-                Integrator integrator = Integrator::Substep, bool top_down = false) {
+                Integrator integrator = Integrator::Substep, bool top_down = false, bool floor_last = false) {
   Scene scene = column_scene(courses, per_course, w, setting, split);
   scene.options.integrator = integrator;
   // The same column with its blocks listed from the top course down (the floor first): the
   // contacts are then stored and swept in the other order.
   if (top_down) std::reverse(scene.blocks.begin() + 1, scene.blocks.end());
+  // The floor listed after the column (as Vajont's bedrock region follows the slide): each
+  // contact with the floor then has the column's block as its first block.
+  if (floor_last) std::rotate(scene.blocks.begin(), scene.blocks.begin() + 1, scene.blocks.end());
   const SimulationResult r = simulate(scene);
   Rest out;
   out.completed = r.summary.status == RunStatus::Completed;
@@ -91,13 +94,15 @@ const double kSizes[] = {1.0, 2.0, 4.0, 8.0, 16.0, 32.0};
 // point moves more than 5 mm (the contacts' settling, measured at most 3.0 mm; a slide moves
 // metres). The soft step fails 8 of these 18 (it creates energy and stops).
 // The 18 ten-block columns with split impulses, each held to the bounds above.
-void expect_split_impulses_hold_the_columns(bool top_down) {
+void expect_split_impulses_hold_the_columns(bool top_down, bool floor_last = false) {
   for (double w : kSizes)
     for (StepSetting st : kResting) {
-      const Rest r = run_column(10, 1, w, st, true, Integrator::Substep, top_down);
+      const Rest r = run_column(10, 1, w, st, true, Integrator::Substep, top_down, floor_last);
       const std::string where = std::to_string(w) + " m blocks, " + std::to_string(st.step) + " s x " +
-                                std::to_string(st.substeps) + (top_down ? ", listed top down: " : ": ") + r.message;
-      ASSERT_TRUE(r.completed) << where;
+                                std::to_string(st.substeps) + (top_down ? ", listed top down" : "") +
+                                (floor_last ? ", floor listed last: " : ": ") + r.message;
+      EXPECT_TRUE(r.completed) << where;  // every column is run and reported, not only the first to fail
+      if (!r.completed) continue;
       EXPECT_LT(r.last_second_speed, 0.01) << where;
       EXPECT_LT(r.movement, 0.005) << where;
     }
@@ -111,6 +116,22 @@ TEST(RestingColumn, SplitImpulsesHoldATenBlockColumnAtRest) { expect_split_impul
 // meet them from the lowest up (prepare_contacts.hpp, colour_manifolds), whichever way the
 // blocks are listed.
 TEST(RestingColumn, SplitImpulsesHoldATenBlockColumnListedTopDown) { expect_split_impulses_hold_the_columns(true); }
+
+// KNOWN DEFECT (found 2026-12-02, revision .12.02.4): the same 36 columns (floor up and top
+// down) with the floor listed after the blocks. 3 of 36 stop with "contacts are creating
+// energy", all of 1 m blocks: floor up at 10 ms x 3 (2.72 s), top down at 10 ms x 4 (3.74 s)
+// and 10 ms x 3 (0.44 s). Traced on the second: after 3.7 s of a slow rocking (under 1.3 mm/s,
+// as with the floor first), one joint of the column stops carrying within one substep's second
+// relax sweep (the block above it takes -0.011 m/s), the blocks above fall for a few substeps
+// at up to 0.036 m/s and the energy audit stops the run. The joints' heights differ, so the
+// sweeps' colours are those of the floor-first column; what changes is which block of each
+// contact is its first (the normal's sense, the narrow phase's reference face) and the order
+// the impact groups and corrections list them in (sorting those lists by height: no change).
+// The other 33 hold within the bounds above.
+TEST(RestingColumn, DISABLED_SplitImpulsesHoldATenBlockColumnWithTheFloorListedLast) {
+  expect_split_impulses_hold_the_columns(false, true);
+  expect_split_impulses_hold_the_columns(true, true);
+}
 
 // A wall 40 courses high and 12 blocks wide of 8 m blocks at 10 ms x 3, Vajont section VII's
 // blocks and depth: at rest with split impulses (measured 0.0022 m/s, 1.5 mm); the soft step
@@ -144,24 +165,26 @@ TEST(RestingColumn, EitherSchemeHoldsTheColumnOrStopsWithADiagnosis) {
 }
 
 // The implicit solver, the reference, holds every column at every step of the sweep
-// including 20 ms, listed from the floor up and from the top down: fastest point over the
-// last second at most 6.4e-5 m/s (floor up) and 1.1e-4 m/s (top down), movement at most 0.12 mm
-// and 0.87 mm (the elastic shortening and contact compression of ten 32 m blocks; the order
-// changes how the column settles into its contacts at the start, not whether it holds), held
-// to 0.01 m/s and 1 mm.
+// including 20 ms, listed from the floor up and from the top down, with the floor listed first
+// or last: fastest point over the last second at most 6.4e-5 m/s (floor up) and 1.1e-4 m/s (top
+// down; 1.2e-4 m/s with the floor last), movement at most 0.12 mm and 0.87 mm (the elastic
+// shortening and contact compression of ten 32 m blocks; the order changes how the column
+// settles into its contacts at the start, not whether it holds), held to 0.01 m/s and 1 mm.
 TEST(RestingColumn, TheImplicitSolverHoldsEveryColumnAtRest) {
-  for (const bool top_down : {false, true})
-    for (double w : kSizes)
-      for (StepSetting st : {StepSetting{0.005, 4}, StepSetting{0.01, 4}, StepSetting{0.02, 4}}) {
-        const Rest r = run_column(10, 1, w, st, false, Integrator::Implicit, top_down);
-        const std::string where = std::to_string(w) + " m blocks, " + std::to_string(st.step) + " s" +
-                                  (top_down ? ", listed top down: " : ": ") + r.message;
-        ASSERT_TRUE(r.completed) << where;
-        EXPECT_LT(r.last_second_speed, 0.01) << where;
-        EXPECT_LT(r.movement, 0.001) << where;
-        std::cout << "[measured] implicit, " << where << " last-second speed " << r.last_second_speed
-                  << " m/s, movement " << r.movement << " m\n";
-      }
+  for (const bool floor_last : {false, true})
+    for (const bool top_down : {false, true})
+      for (double w : kSizes)
+        for (StepSetting st : {StepSetting{0.005, 4}, StepSetting{0.01, 4}, StepSetting{0.02, 4}}) {
+          const Rest r = run_column(10, 1, w, st, false, Integrator::Implicit, top_down, floor_last);
+          const std::string where = std::to_string(w) + " m blocks, " + std::to_string(st.step) + " s" +
+                                    (top_down ? ", listed top down" : "") +
+                                    (floor_last ? ", floor listed last: " : ": ") + r.message;
+          ASSERT_TRUE(r.completed) << where;
+          EXPECT_LT(r.last_second_speed, 0.01) << where;
+          EXPECT_LT(r.movement, 0.001) << where;
+          std::cout << "[measured] implicit, " << where << " last-second speed " << r.last_second_speed
+                    << " m/s, movement " << r.movement << " m\n";
+        }
 }
 
 }  // namespace
