@@ -127,10 +127,11 @@ TEST(RestingColumn, SplitImpulsesHoldATenBlockColumnListedTopDown) { expect_spli
 // sweeps' colours are those of the floor-first column; what changes is which block of each
 // contact is its first (the normal's sense, the narrow phase's reference face) and the order
 // the impact groups and corrections list them in (sorting those lists by height: no change).
-// Underneath: columns of 1 m blocks climb with the floor listed first too (the push-out sweep
-// lifts them while their joints keep overlaps of 7-11 slops: the top block 0.62 mm up in 5 s at
-// 10 ms x 4), so gravity's work since t = 0 turns negative and a small burst of motion trips the
-// energy audit (docs/theory.md §13, "Limits of the substep solver").
+// Underneath: columns of 1 m blocks climb with the floor listed first too. The quiet start
+// leaves every other joint overlapping by up to 0.24 mm (16 slops), the push-out sweep then takes
+// it out slowly and lifts the column (the top block 0.62 mm up in 5 s at 10 ms x 4), so gravity's
+// work since t = 0 turns negative and a small burst of motion trips the energy audit
+// (docs/theory.md §13, "Limits of the substep solver").
 // The other 33 hold within the bounds above.
 TEST(RestingColumn, DISABLED_SplitImpulsesHoldATenBlockColumnWithTheFloorListedLast) {
   expect_split_impulses_hold_the_columns(false, true);
