@@ -8,10 +8,14 @@
 // same event takes in a slide: a block dropped onto a stack, a block driven into a row free to
 // move, and slow impacts into the walled row and onto stacks, with 3, 6 and 10 struck blocks
 // (stacks of 15 too). This file has the stacks; tests/test_impact_rows.cpp the rows; the sweep
-// and its bounds are in tests/impact_sweep.hpp. One stack sweep is a known defect (disabled):
-// the substep solver's drops onto columns of thirty.
+// and its bounds are in tests/impact_sweep.hpp. Two stack sweeps are known defects (disabled):
+// the substep solver's drops onto columns of thirty, and its tall stacks' coming to rest after a
+// drop.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cstdio>
+#include <string>
 #include <vector>
 
 #include "tests/impact_sweep.hpp"
@@ -177,6 +181,69 @@ TEST(ImpactRebound, AGivenVelocityWaitsForTheClock) {
               worst = std::max(worst, (a.history[i].position - b.history[i].position).norm());
           EXPECT_LE(worst, 1e-9) << label(c) << ", gap " << gap * 1000 << " mm";
         }
+}
+
+// After the drop, the stack comes to rest. The sweeps above watch the first 0.5 s; a stack
+// left standing must also stop moving, as a slide's deposit must. 256 drops (1 and 4 m strikers
+// at 0.25-2.5 m/s onto stacks of 3-14 blocks as thick as the striker or a quarter of it, 28 and
+// 42 deg, 10 ms x 3 and 5 ms x 4), each run for 3 s: the fastest point over the last half-second
+// is held to 0.01 m/s (a tenth of the default rest_speed, the resting columns' bound).
+struct Settling {
+  int runs = 0;
+  int moving = 0;        // runs whose last half-second is not at rest
+  double worst = 0.0;    // m/s
+  std::string worst_case;
+};
+
+Settling settle_after_drops(Integrator integrator) {
+  Settling out;
+  for (const double size : {1.0, 4.0})
+    for (const double speed : {0.25, 0.5, 1.1, 2.5})
+      for (const double ratio : {1.0, 0.25})
+        for (const int count : {3, 6, 10, 14})
+          for (const double friction : {28.0, 42.0})
+            for (const auto& [step, substeps] : {std::pair{0.01, 3}, std::pair{0.005, 4}}) {
+              Case c{Shape::Stack, size, speed, ratio, count, step, substeps, integrator};
+              c.friction = friction;
+              Scene scene = scene_of(c);
+              scene.duration = 3.0;
+              const SimulationResult r = simulate(scene);
+              EXPECT_EQ(r.summary.status, RunStatus::Completed) << label(c) << ": " << r.summary.message;
+              double last = 0.0;
+              for (const HistoryRow& h : r.history)
+                if (h.time >= scene.duration - 0.5) last = std::max(last, h.velocity.norm());
+              ++out.runs;
+              if (last >= 0.01) ++out.moving;
+              if (last > out.worst) out.worst = last, out.worst_case = label(c);
+            }
+  std::printf("[measured] %d drops, %d still moving after 3 s; fastest over the last half-second %.3g m/s (%s)\n",
+              out.runs, out.moving, out.worst, out.worst_case.c_str());
+  return out;
+}
+
+// The implicit solver: every stack at rest, 2.2e-3 m/s at most (a 4 m block at 2.5 m/s onto
+// fourteen 4 m blocks, 5 ms).
+TEST(ImpactRebound, AStruckStackComesToRestImplicit) {
+  const Settling s = settle_after_drops(Integrator::Implicit);
+  EXPECT_EQ(s.runs, 256);
+  EXPECT_LT(s.worst, 0.01) << s.worst_case;
+}
+
+// KNOWN DEFECT (found 2026-12-02, revision .12.02.4): the substep solver leaves 82 of the 256
+// stacks rocking (all but one of 10 and 14 blocks; 0.42 m/s worst, a 1 m block at 2.5 m/s onto
+// fourteen 0.25 m blocks at 10 ms x 3). Traced on a 1 m block at 1.1 m/s onto fourteen 0.25 m
+// blocks (28 deg, 10 ms x 3): the stack rocks as one about its base (lateral speed linear in
+// height, 0.18 m/s at the top, +-4.5 cm) for 5 s without decaying, and the centroids' kinetic
+// plus potential energy rises by up to 530 J/m within 0.6 s (t = 0.7-1.3 s; the whole stack
+// lifted 4.8 mm), of which the push-out's lift is 32 J/m: the velocity-level solve feeds it,
+// with about one impact group per substep (1013 in the 900 substeps of 3 s). The energy audit
+// does not stop it: the striker's 1512 J/m of kinetic energy at t = 0 stays in its allowance.
+// Eight substeps instead of three leave 29 rocking, 0.087 m/s worst (docs/theory.md §13,
+// "Limits of the substep solver").
+TEST(ImpactRebound, DISABLED_AStruckStackComesToRestSubstep) {
+  const Settling s = settle_after_drops(Integrator::Substep);
+  EXPECT_EQ(s.runs, 256);
+  EXPECT_LT(s.worst, 0.01) << s.worst_case;
 }
 
 }  // namespace
