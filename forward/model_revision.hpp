@@ -7,6 +7,6 @@
 
 namespace ddafit {
 
-inline constexpr const char* kModelRevision = "2026-12-02.4";
+inline constexpr const char* kModelRevision = "2026-12-03.1";
 
 }  // namespace ddafit

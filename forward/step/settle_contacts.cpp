@@ -1,10 +1,13 @@
 #include "forward/step/settle_contacts.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 
 #include "forward/common/displace_block.hpp"
 #include "forward/common/supported_blocks.hpp"
 #include "forward/contact/contact_law.hpp"
+#include "forward/kinematics.hpp"
 #include "forward/step/assemble.hpp"
 #include "forward/step/new_points.hpp"
 #include "forward/step/point_springs.hpp"
@@ -46,38 +49,87 @@ void load_springs(const BlockSystem& s, ContactSet& contacts, const StepParamete
   }
 }
 
-}  // namespace
+// A block whose pass moves it at least this share of its move in the pass before is falling,
+// not settling: on its way to equilibrium every pass shrinks the distance by the factor of
+// settle_contacts.hpp (under 0.5 on the 225 m Vajont mass), while a block released on its
+// corner falls further in each pass than in the last (a 1 x 4.5 m block tilted 0.11 rad:
+// 7.2, 8.3, 9.4 ... cm per pass, set upright before t = 0 until revision 2026-12-03.1).
+constexpr double kFallingRatio = 0.9;
+// ... and turns about a point it rests on: its smallest move at its closed contact points is
+// under this share of its largest move. A block sinking further each pass into springs far
+// too soft (a penalty of 1000 N/m under a 12 t/m slider) moves as much there as anywhere,
+// and is left to settle, sink and be stopped by the penetration check with its diagnosis.
+constexpr double kPivotShare = 0.5;
+// A block that a single pass turns by more than this (rad) about a point it rests on falls
+// too: settling is elastic, and turns a block by a strain's worth (2.7e-5 rad at most on
+// Vajont section I, 2.8e-4 on VII), while a column of fourteen 0.5 x 0.16 m blocks tilted
+// 0.011 rad was set upright in the first pass.
+constexpr double kFallingTurn = 3e-3;
+// Restarts of the settling without the blocks found falling (each restart frees at least one).
+constexpr int kFallingRestarts = 4;
 
-bool settle_contacts(ImplicitStepContext& ctx, const StepParameters& step, double max_shift, std::string& problem) {
+enum class Settled { Done, Failed, Falling };
+
+// The blocks touching a falling block fall with it (each joined through free blocks): a column
+// whose upper blocks were held as given while its base block settled overlapped itself and
+// bounced apart in the first step (fourteen 0.5 x 0.11 m blocks tilted 0.016 rad).
+void fall_with_neighbours(const BlockSystem& s, const ContactSet& contacts, std::vector<char>& falling) {
+  for (bool grew = true; grew;) {
+    grew = false;
+    for (const ContactManifold& m : contacts.manifolds) {
+      const int a = m.block_a, b = m.block_b;
+      if (s.blocks[a].unknown < 0 || s.blocks[b].unknown < 0 || falling[a] == falling[b]) continue;
+      falling[a] = falling[b] = 1;
+      grew = true;
+    }
+  }
+}
+
+// The passes (settle_contacts below) for the blocks in `settles`, none of `falling`; on a
+// falling block, returns Falling with the newly falling ones flagged and nothing undone.
+Settled run_passes(ImplicitStepContext& ctx, const StepParameters& relaxed, double max_shift, std::vector<char>& settles,
+                   std::vector<char>& falling, std::string& problem) {
   BlockSystem& s = ctx.system;
   ContactDetection& detection = ctx.detection;
   ContactSet& contacts = ctx.contacts;
-  const int passes = ctx.options.settle_passes;
-  StepParameters relaxed = step;
-  relaxed.time_step *= kSettleStepScale;
-  // The blocks that settle: those resting on the ground (a cluster touching only itself is in
-  // flight), and those a pass brings into contact with them.
-  std::vector<char> settles = supported_blocks(s, contacts.manifolds, detection.settings.linear_slop);
-
-  std::vector<Vec6> velocities(s.blocks.size());
-  for (size_t b = 0; b < s.blocks.size(); ++b) {
-    velocities[b] = s.blocks[b].velocity;
-    s.blocks[b].velocity.setZero();
-  }
   GlobalSystem eq;  // its own: the relaxed step's K and F are not the dynamic ones
   const Eigen::VectorXd& d = eq.d;
-  bool ok = true;
   bool converged_closed = true;  // no point closed in the last pass
-  for (int pass = 0; pass < passes && ok; ++pass) {
+  // The falling test's floor: moves under the contact slop are settling's own noise.
+  const double noise = detection.settings.linear_slop;
+  std::vector<double> last(s.blocks.size(), 0.0), at_contacts(s.blocks.size(), 0.0);
+  for (int pass = 0; pass < ctx.options.settle_passes; ++pass) {
     assemble(s, contacts, relaxed, eq);
     std::string reason;
-    ok = ctx.solver.solve(eq.k, eq.f, eq.d, reason);
-    if (!ok) break;
-    const auto moving = [&](int b) { return s.blocks[b].unknown >= 0 && settles[b]; };
+    if (!ctx.solver.solve(eq.k, eq.f, eq.d, reason)) return Settled::Failed;
+    const auto moving = [&](int b) { return s.blocks[b].unknown >= 0 && settles[b] && !falling[b]; };
     const auto unknowns = [&](int b) -> Vec6 { return d.segment<6>(6 * s.blocks[b].unknown); };
+    // Each block's smallest move at its closed contact points: one turning about a point it
+    // rests on hardly moves there.
+    std::fill(at_contacts.begin(), at_contacts.end(), std::numeric_limits<double>::infinity());
+    for (const ContactManifold& m : contacts.manifolds)
+      for (int q = 0; q < m.point_count; ++q) {
+        if (m.points[q].spring.state == ContactState::Open) continue;
+        for (const int b : {m.block_a, m.block_b})
+          if (moving(b))
+            at_contacts[b] = std::min(at_contacts[b], exact_point_displacement(m.points[q].anchor, s.blocks[b].centroid,
+                                                                               unknowns(b)).norm());
+      }
     double largest = 0.0;
-    for (int b = 0; b < static_cast<int>(s.blocks.size()); ++b)
-      if (moving(b)) largest = std::max(largest, block_displacement(s, b, unknowns(b)));
+    bool fell = false;
+    for (int b = 0; b < static_cast<int>(s.blocks.size()); ++b) {
+      if (!moving(b)) continue;
+      const double move = block_displacement(s, b, unknowns(b));
+      const bool grows = pass > 0 && move > noise && move >= kFallingRatio * last[b];
+      const bool turns = std::abs(unknowns(b)[2]) > kFallingTurn;
+      if ((grows || turns) && at_contacts[b] < kPivotShare * move) falling[b] = 1, fell = true;
+      last[b] = move;
+      largest = std::max(largest, move);
+    }
+    if (fell) {
+      fall_with_neighbours(s, contacts, falling);
+      return Settled::Falling;
+    }
     if (largest > max_shift) break;
     const bool converged = largest <= kSettleTolerance * max_shift;
     // The locked springs' offsets follow the pass; settling is not part of the measured
@@ -100,7 +152,7 @@ bool settle_contacts(ImplicitStepContext& ctx, const StepParameters& step, doubl
     detection.settings.first_step = true;
     problem = detect_contacts(s, detection, contacts);
     detection.settings.first_step = true;
-    if (!problem.empty()) return true;
+    if (!problem.empty()) return Settled::Done;
     // (A point new in this detection that touches was locked by the detection itself.)
     for (ContactManifold& m : contacts.manifolds)
       for (int q = 0; q < m.point_count; ++q) {
@@ -115,9 +167,42 @@ bool settle_contacts(ImplicitStepContext& ctx, const StepParameters& step, doubl
     if (converged && converged_closed) break;
     converged_closed = true;
   }
+  return Settled::Done;
+}
+
+}  // namespace
+
+bool settle_contacts(ImplicitStepContext& ctx, const StepParameters& step, double max_shift, std::string& problem) {
+  BlockSystem& s = ctx.system;
+  StepParameters relaxed = step;
+  relaxed.time_step *= kSettleStepScale;
+  // The blocks that settle: those resting on the ground (a cluster touching only itself is in
+  // flight), and those a pass brings into contact with them.
+  const std::vector<char> supported = supported_blocks(s, ctx.contacts.manifolds, ctx.detection.settings.linear_slop);
+  std::vector<Vec6> velocities(s.blocks.size());
+  for (size_t b = 0; b < s.blocks.size(); ++b) {
+    velocities[b] = s.blocks[b].velocity;
+    s.blocks[b].velocity.setZero();
+  }
+  // What a restart goes back to: a falling block starts where it was given, as one in flight
+  // does, and the others settle again without it.
+  const std::vector<Block> blocks = s.blocks;
+  const std::vector<Vec2> vertices = s.vertices;
+  const std::vector<MaterialPoint> points = s.points;
+  const ContactSet contacts = ctx.contacts;
+  std::vector<char> falling(s.blocks.size(), 0);
+  Settled result = Settled::Done;
+  for (int attempt = 0; attempt <= kFallingRestarts; ++attempt) {
+    std::vector<char> settles = supported;
+    result = run_passes(ctx, relaxed, max_shift, settles, falling, problem);
+    if (result != Settled::Falling) break;
+    s.blocks = blocks, s.vertices = vertices, s.points = points, ctx.contacts = contacts;
+    for (size_t b = 0; b < s.blocks.size(); ++b) s.blocks[b].velocity.setZero();
+    if (attempt == kFallingRestarts) result = Settled::Done;  // the state as given
+  }
   for (size_t b = 0; b < s.blocks.size(); ++b) s.blocks[b].velocity = velocities[b];
-  load_springs(s, contacts, step);
-  return ok;
+  load_springs(s, ctx.contacts, step);
+  return result != Settled::Failed;
 }
 
 }  // namespace ddafit

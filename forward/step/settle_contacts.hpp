@@ -11,7 +11,10 @@
 // (the factor falls below 1e-2 for the incline check, and the pre-load converges).
 // Only blocks that touch something move; blocks in flight are left exactly as given.
 // A pass that would move a block more than `max_shift` is not applied: such a block is
-// not near equilibrium (a block balanced on a corner), and the dynamics take over.
+// not near equilibrium (a block balanced on a corner), and the dynamics take over. A block
+// that falls more slowly (a pass moves it further than the pass before)
+// starts where it was given, with every free block touching it, and the rest settle again
+// without them (settle_contacts.cpp, kFallingRatio).
 #pragma once
 
 #include <vector>

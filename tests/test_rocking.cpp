@@ -1,0 +1,232 @@
+// Housner's rocking block (G. W. Housner, "The behavior of inverted pendulum structures during
+// earthquakes", Bull. Seismol. Soc. Am. 53(2), 1963): a rigid b x H block released from rest,
+// tilted by theta0 about a base corner, falls back about that corner, strikes the floor with
+// the other and rocks on, each impact leaving the angular velocity multiplied by
+//     r = 1 - (3/2) sin^2(alpha),  alpha = atan(b / H)                          (Housner eq. 18)
+// (angular momentum kept about the new corner; no bounce, no slip). Between impacts the energy
+// is kept, so the peak tilts theta_k obey
+//     cos(alpha - theta_{k+1}) - cos(alpha) = r^2 [cos(alpha - theta_k) - cos(alpha)],
+// and the first impact comes after t1 = arccosh(alpha / (alpha - theta0)) / p with
+// p = sqrt(3 g / (4 R)), R the half-diagonal (the linearised equation, Housner eq. 8).
+// This is DDA's classic check (Yagoda-Biran & Hatzor 2010 ran it for Shi's DDA): the landing
+// on a corner is the contact event of a toppling slope, and a rocking block that gains energy
+// at its impacts would make one that keeps rocking or falls where it should stop.
+//
+// The class: aspect H/b 3, 4.5 and 6; base 0.5 and 2 m; tilt 0.3 and 0.6 of alpha; both
+// solvers. Tolerances and why:
+//   - the first impact within 3 % of t1 (the linearised equation is within 0.5 % of the exact
+//     one at these tilts, and the step, 5 ms, is under 1 % of t1);
+//   - the tilt at t = 0 within 1 % of the given one (settling and the quiet start must not
+//     move a block that is not in equilibrium: the implicit solver's settling set it upright
+//     until revision 2026-12-03.1, and it never rocked);
+//   - each of the first three impacts keeps at most r^2 + 0.02 of the rocking energy (a
+//     discretised impact may lose more than Housner's instantaneous one, never gain), and at
+//     least r^2 - 0.12 (measured 0.003-0.019 below r^2 on the substep solver, 0.005-0.064 on
+//     the implicit one: an impact that loses much more is damping the rocking out).
+// A column of 2-14 equal blocks released the same way must come to rest (below).
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "forward/simulation.hpp"
+#include "verify/cases.hpp"
+
+namespace ddafit {
+namespace {
+
+constexpr double kGravity = 9.81;
+constexpr double kDensity = 2500.0;  // kg/m^3
+constexpr double kStep = 0.005;      // s
+
+struct Rocking {
+  double base, height;  // b, H (m)
+  double tilt_share;    // theta0 / alpha
+  int blocks = 1;       // the column cut into this many equal blocks
+  Integrator integrator;
+};
+
+std::string label(const Rocking& c) {
+  char text[160];
+  std::snprintf(text, sizeof text, "%s: %g x %g m in %d block(s), tilted %.2f alpha",
+                c.integrator == Integrator::Implicit ? "implicit" : "substep", c.base, c.height, c.blocks,
+                c.tilt_share);
+  return text;
+}
+
+double alpha_of(const Rocking& c) { return std::atan(c.base / c.height); }
+
+// The block tilted by theta0 about its right base corner (it leans right and falls back left),
+// on a fixed floor; two material points, its base and top centres, give its tilt.
+Scene rocking_scene(const Rocking& c, double duration) {
+  Scene s = verification::rock_scene(kDensity, 42.0, duration, kStep, kStep);
+  s.options.integrator = c.integrator;
+  s.options.substeps = 4;
+  const double theta = c.tilt_share * alpha_of(c), b = c.base, H = c.height;
+  s.blocks.push_back(verification::block("floor", {{-10.0 * b, -b}, {10.0 * b, -b}, {10.0 * b, 0.0}, {-10.0 * b, 0.0}}, true));
+  const Vec2 pivot(0.5 * b, 0.0);
+  const auto tilt = [&](Vec2 p) {
+    const Vec2 d = p - pivot;
+    return Vec2(pivot.x() + std::cos(theta) * d.x() + std::sin(theta) * d.y(),
+                pivot.y() - std::sin(theta) * d.x() + std::cos(theta) * d.y());
+  };
+  const double t = H / c.blocks;
+  for (int i = 0; i < c.blocks; ++i)
+    s.blocks.push_back(verification::block(
+        "block_" + std::to_string(i),
+        {tilt({-0.5 * b, i * t}), tilt({0.5 * b, i * t}), tilt({0.5 * b, (i + 1) * t}), tilt({-0.5 * b, (i + 1) * t})},
+        false));
+  s.measure.push_back({"base", tilt({0.0, 0.01 * t})});
+  s.measure.push_back({"top", tilt({0.0, H - 0.01 * t})});
+  return s;
+}
+
+struct RockingRecord {
+  double first_impact = -1.0;        // s, the first time the tilt changes sign
+  std::vector<double> peaks;         // |tilt| at each half-cycle's peak, the release first
+  bool completed = false;
+  std::string message;
+};
+
+RockingRecord rock(const Rocking& c, double duration) {
+  const SimulationResult r = simulate(rocking_scene(c, duration));
+  RockingRecord out;
+  out.completed = r.summary.status == RunStatus::Completed;
+  out.message = r.summary.message;
+  double peak = 0.0;
+  int sign = 0;
+  for (size_t k = 0; k + 1 < r.history.size(); k += 2) {
+    const Vec2 axis = r.history[k + 1].position - r.history[k].position;  // base to top
+    const double tilt = std::atan2(axis.x(), axis.y());
+    const int now = tilt > 0.0 ? 1 : -1;
+    if (sign != 0 && now != sign) {
+      if (out.first_impact < 0.0) out.first_impact = r.history[k].time;
+      out.peaks.push_back(peak);
+      peak = 0.0;
+    }
+    sign = now;
+    peak = std::max(peak, std::abs(tilt));
+  }
+  return out;
+}
+
+// Share of the rocking energy kept from the peak before to the peak after one impact.
+double kept(double alpha, double before, double after) {
+  return (std::cos(alpha - after) - std::cos(alpha)) / (std::cos(alpha - before) - std::cos(alpha));
+}
+
+TEST(Rocking, ABlockReleasedOnItsCornerRocksAsHousnerSays) {
+  for (const Integrator integrator : {Integrator::Substep, Integrator::Implicit}) {
+    int runs = 0;
+    double worst_gain = -1.0, worst_loss = 1.0, worst_time = 0.0;
+    for (const double aspect : {3.0, 4.5, 6.0})
+      for (const double base : {0.5, 2.0})
+        for (const double share : {0.3, 0.6}) {
+          const Rocking c{base, aspect * base, share, 1, integrator};
+          const double alpha = alpha_of(c), R = 0.5 * std::hypot(c.base, c.height);
+          const double r = 1.0 - 1.5 * std::pow(std::sin(alpha), 2);
+          const double p = std::sqrt(3.0 * kGravity / (4.0 * R));
+          const double t1 = std::acosh(1.0 / (1.0 - share)) / p;
+          // Long enough for four impacts: each half-cycle is shorter than the release's 2 t1.
+          const RockingRecord rec = rock(c, 8.0 * t1);
+          ++runs;
+          ASSERT_TRUE(rec.completed) << label(c) << ": " << rec.message;
+          ASSERT_GE(rec.peaks.size(), 4u) << label(c) << ": rocked " << rec.peaks.size() << " half-cycles";
+          const double time_error = (rec.first_impact - t1) / t1;
+          worst_time = std::max(worst_time, std::abs(time_error));
+          EXPECT_NEAR(rec.first_impact, t1, 0.03 * t1) << label(c);
+          EXPECT_NEAR(rec.peaks[0], share * alpha, 0.01 * share * alpha) << label(c) << ": the tilt at release";
+          for (int k = 0; k < 3; ++k) {
+            const double share_kept = kept(alpha, rec.peaks[k], rec.peaks[k + 1]);
+            worst_gain = std::max(worst_gain, share_kept - r * r);
+            worst_loss = std::min(worst_loss, share_kept - r * r);
+            EXPECT_LE(share_kept, r * r + 0.02) << label(c) << ", impact " << k + 1;
+            EXPECT_GE(share_kept, r * r - 0.12) << label(c) << ", impact " << k + 1;
+          }
+        }
+    std::printf("[measured] %s: %d releases; first impact within %.2f %% of Housner's t1; energy kept per impact "
+                "r^2 %+.3f to %+.3f\n",
+                integrator == Integrator::Implicit ? "implicit" : "substep", runs, 100.0 * worst_time, worst_loss,
+                worst_gain);
+  }
+}
+
+// Housner's time from release to rest: the peaks fall by the energy rule above, and the
+// half-cycle from a peak theta to the next is 2 arccosh(alpha / (alpha - theta)) / p.
+double housner_time_to_rest(double alpha, double p, double theta0) {
+  const double r2 = std::pow(1.0 - 1.5 * std::pow(std::sin(alpha), 2), 2);
+  double t = std::acosh(alpha / (alpha - theta0)) / p, theta = theta0;
+  for (int k = 0; k < 1000 && theta > 1e-7 * alpha; ++k) {
+    const double e = r2 * (std::cos(alpha - theta) - std::cos(alpha));
+    theta = alpha - std::acos(std::cos(alpha) + e);
+    t += 2.0 * std::acosh(alpha / (alpha - theta)) / p;
+  }
+  return t;
+}
+
+// Columns of 2, 4, 8 and 14 equal blocks (aspect 3 and 4.5, base 0.5 and 2 m, tilted 0.05, 0.2
+// and 0.5 of alpha; 5 ms steps) released on a corner. Joints may open as the column rocks, so
+// Housner's numbers are not the answer, but rocking only loses energy: each column must start
+// at its given tilt (2 %) and be at rest (every point under 0.01 m/s over the last half-second,
+// a tenth of the default rest_speed, as for the struck stacks) after twice the time Housner's
+// single block takes to stop, plus 1 s.
+struct ColumnRest {
+  int runs = 0, moving = 0, stopped = 0;
+  double worst = 0.0;
+  std::string worst_case;
+  double release_low = 1e9, release_high = -1e9;  // tilt at t = 0 / given tilt
+};
+
+ColumnRest columns_come_to_rest(Integrator integrator) {
+  ColumnRest out;
+  for (const int blocks : {2, 4, 8, 14})
+    for (const double aspect : {3.0, 4.5})
+      for (const double base : {0.5, 2.0})
+        for (const double share : {0.05, 0.2, 0.5}) {
+          const Rocking c{base, aspect * base, share, blocks, integrator};
+          const double alpha = alpha_of(c), R = 0.5 * std::hypot(c.base, c.height);
+          const double p = std::sqrt(3.0 * kGravity / (4.0 * R));
+          const double rest = housner_time_to_rest(alpha, p, share * alpha);
+          const double duration = 2.0 * rest + 1.0;
+          const SimulationResult r = simulate(rocking_scene(c, duration));
+          ++out.runs;
+          if (r.summary.status != RunStatus::Completed) {
+            ++out.stopped;
+            ADD_FAILURE() << label(c) << ": " << r.summary.message;
+            continue;
+          }
+          double last = 0.0;
+          for (const HistoryRow& h : r.history)
+            if (h.time >= duration - 0.5) last = std::max(last, h.velocity.norm());
+          // The tilt at t = 0 (base to top) against the given one.
+          const Vec2 axis = r.history[1].position - r.history[0].position;
+          const double release = std::atan2(axis.x(), axis.y()) / (share * alpha);
+          out.release_low = std::min(out.release_low, release);
+          out.release_high = std::max(out.release_high, release);
+          EXPECT_NEAR(release, 1.0, 0.02) << label(c) << ": the tilt at t = 0 against the given one";
+          if (last >= 0.01) ++out.moving;
+          if (last > out.worst) out.worst = last, out.worst_case = label(c);
+        }
+  std::printf("[measured] %d columns released on a corner: %d stopped by the energy audit, %d still moving at twice "
+              "Housner's time to rest + 1 s; fastest %.3g m/s (%s); tilt at t = 0 %.4f-%.4f of the given\n",
+              out.runs, out.stopped, out.moving, out.worst, out.worst_case.c_str(), out.release_low, out.release_high);
+  return out;
+}
+
+TEST(Rocking, AColumnReleasedOnItsCornerComesToRestImplicit) {
+  const ColumnRest r = columns_come_to_rest(Integrator::Implicit);
+  EXPECT_EQ(r.moving, 0) << r.worst_case;
+}
+
+// KNOWN DEFECT (found 2026-12-03, revision .12.03.1): the substep solver leaves 19 of the 48
+// columns rocking (0.17 m/s worst: fourteen 2 x 0.64 m blocks tilted 0.05 alpha; docs/theory.md
+// §13, "A rocking column gains energy"), and its quiet start lets a column on a corner fall by up to 12 % of
+// its tilt before t = 0. The single block (Housner's test above) rocks as Housner says.
+TEST(Rocking, DISABLED_AColumnReleasedOnItsCornerComesToRestSubstep) {
+  const ColumnRest r = columns_come_to_rest(Integrator::Substep);
+  EXPECT_EQ(r.moving, 0) << r.worst_case;
+}
+
+}  // namespace
+}  // namespace ddafit
