@@ -44,6 +44,10 @@ TEST(CasesMatchCode, InclineDegradation) {
 
 TEST(CasesMatchCode, Stack) { EXPECT_NO_FATAL_FAILURE(expect_same_scene(io::read_scene(kDir + "stack.yaml"), verification::stack_scene())); }
 
+TEST(CasesMatchCode, RockingBlock) {
+  EXPECT_NO_FATAL_FAILURE(expect_same_scene(io::read_scene(kDir + "rocking.yaml"), verification::rocking_block_scene()));
+}
+
 TEST(CasesMatchCode, Collision) {
   EXPECT_NO_FATAL_FAILURE(expect_same_scene(io::read_scene(kDir + "collision.yaml"), verification::collision_scene()));
 }

@@ -30,6 +30,13 @@ Scene stack_scene();
 // Two blocks in free space, one moving into the other at rest.
 Scene collision_scene();
 
+// Housner's rocking block: a 1 x 4.5 m block tilted by half its critical angle
+// (alpha = atan(1 / 4.5)) about its right base corner, released from rest on a fixed floor
+// (friction 42 deg, no slip); 5 ms steps (of four substeps, the default). Material points at its base and
+// top centres give its tilt.
+constexpr double kRockingBase = 1.0, kRockingHeight = 4.5, kRockingTiltShare = 0.5;
+Scene rocking_block_scene();
+
 // A running-bond wall of `courses` x `per_course` bricks (1 m x 0.5 m) on a fixed floor:
 // the benchmark's many-contact scene (100 blocks for 10 x 10).
 Scene brick_wall_scene(int courses, int per_course, double duration);
