@@ -35,4 +35,45 @@ void InclineAnalytic::solve(const std::vector<double>& times, std::vector<double
   }
 }
 
+double HousnerRocking::alpha() const { return std::atan(base / height); }
+
+double HousnerRocking::frequency() const { return std::sqrt(3.0 * gravity / (2.0 * std::hypot(base, height))); }
+
+double HousnerRocking::energy_kept() const { return std::pow(1.0 - 1.5 * std::pow(std::sin(alpha()), 2), 2); }
+
+double HousnerRocking::energy(double theta) const { return std::cos(alpha() - theta) - std::cos(alpha()); }
+
+double HousnerRocking::first_impact(double theta0) const {
+  return std::acosh(alpha() / (alpha() - theta0)) / frequency();
+}
+
+double HousnerRocking::time_to_rest(double theta0) const {
+  const double a = alpha();
+  double t = first_impact(theta0), theta = theta0;
+  for (int k = 0; k < 1000 && theta > 1e-7 * a; ++k) {
+    theta = a - std::acos(std::cos(a) + energy_kept() * energy(theta));
+    t += 2.0 * first_impact(theta);  // up to the peak and back down
+  }
+  return t;
+}
+
+RockingTrace rocking_trace(const std::vector<HistoryRow>& history) {
+  RockingTrace out;
+  double peak = 0.0;
+  int sign = 0;
+  for (size_t k = 0; k + 1 < history.size(); k += 2) {
+    const Vec2 axis = history[k + 1].position - history[k].position;  // base to top
+    const double tilt = std::atan2(axis.x(), axis.y());
+    const int now = tilt > 0.0 ? 1 : -1;
+    if (sign != 0 && now != sign) {
+      if (out.first_impact < 0.0) out.first_impact = history[k].time;
+      out.peaks.push_back(peak);
+      peak = 0.0;
+    }
+    sign = now;
+    peak = std::max(peak, std::abs(tilt));
+  }
+  return out;
+}
+
 }  // namespace ddafit::verification

@@ -95,28 +95,35 @@ Scene collision_scene() {
   return s;
 }
 
-Scene rocking_block_scene() {
-  Scene s = base_scene(6.0, 5.0e-3, 5.0e-3);
+Scene rocking_column_scene(const RockingSetup& setup) {
+  Scene s = base_scene(setup.duration, setup.step, setup.step);
   Interface face;
   face.name = "joint";
   face.friction_angle = 42.0;
   s.interfaces.push_back(face);
   s.default_interface = 0;
-  const double b = kRockingBase, H = kRockingHeight;
-  const double theta = kRockingTiltShare * std::atan(b / H);
+  const double b = setup.base, H = setup.height, t = H / setup.blocks;
+  const double theta = setup.tilt_share * std::atan(b / H);
   const Vec2 pivot(0.5 * b, 0.0);
-  const auto tilt = [&](Vec2 p) {  // clockwise by theta about the pivot: the block leans right
+  const auto tilt = [&](Vec2 p) {  // clockwise by theta about the pivot
     const Vec2 d = p - pivot;
     return Vec2(pivot.x() + std::cos(theta) * d.x() + std::sin(theta) * d.y(),
                 pivot.y() - std::sin(theta) * d.x() + std::cos(theta) * d.y());
   };
-  s.blocks.push_back(block("floor", box({-10, -1}, {1, 0}, {0, 1}, 20.0, 1.0), true));
-  s.blocks.push_back(block("block", {tilt({-0.5 * b, 0}), tilt({0.5 * b, 0}), tilt({0.5 * b, H}), tilt({-0.5 * b, H})},
-                           false));
-  s.measure.push_back({"base", tilt({0.0, 0.05})});
-  s.measure.push_back({"top", tilt({0.0, H - 0.05})});
+  s.blocks.push_back(block("floor", box({-10.0 * b, -b}, {1, 0}, {0, 1}, 20.0 * b, b), true));
+  for (int i = 0; i < setup.blocks; ++i) {
+    const std::string name = setup.blocks == 1 ? std::string("block") : std::string("block_").append(std::to_string(i));
+    s.blocks.push_back(block(name,
+                             {tilt({-0.5 * b, i * t}), tilt({0.5 * b, i * t}), tilt({0.5 * b, (i + 1) * t}),
+                              tilt({-0.5 * b, (i + 1) * t})},
+                             false));
+  }
+  s.measure.push_back({"base", tilt({0.0, 0.05 * b})});
+  s.measure.push_back({"top", tilt({0.0, H - 0.05 * b})});
   return s;
 }
+
+Scene rocking_block_scene() { return rocking_column_scene(RockingSetup{}); }
 
 Scene brick_wall_scene(int courses, int per_course, double duration) {
   Scene s = base_scene(duration, 1.0e-3, 0.01);

@@ -30,11 +30,19 @@ Scene stack_scene();
 // Two blocks in free space, one moving into the other at rest.
 Scene collision_scene();
 
-// Housner's rocking block: a 1 x 4.5 m block tilted by half its critical angle
-// (alpha = atan(1 / 4.5)) about its right base corner, released from rest on a fixed floor
-// (friction 42 deg, no slip); 5 ms steps (of four substeps, the default). Material points at its base and
-// top centres give its tilt.
-constexpr double kRockingBase = 1.0, kRockingHeight = 4.5, kRockingTiltShare = 0.5;
+// A column of `blocks` equal b x H/blocks blocks (one: Housner's rocking block) tilted by
+// tilt_share of its critical angle alpha = atan(b / H) about its right base corner (it leans
+// right and falls back left), released from rest on a fixed floor 20 b wide (friction 42 deg:
+// no slip); steps of `step` (of four substeps, the default). Material points at the column's
+// base and top centres, 0.05 b inside it, give its tilt (verification::rocking_trace).
+struct RockingSetup {
+  double base = 1.0, height = 4.5;  // b, H (m)
+  double tilt_share = 0.5;          // theta0 / alpha
+  int blocks = 1;
+  double duration = 6.0, step = 5.0e-3;  // s
+};
+Scene rocking_column_scene(const RockingSetup& setup);
+// The verification case: RockingSetup's defaults, a 1 x 4.5 m block tilted alpha / 2.
 Scene rocking_block_scene();
 
 // A running-bond wall of `courses` x `per_course` bricks (1 m x 0.5 m) on a fixed floor:

@@ -235,40 +235,23 @@ std::vector<CheckRow> collision_rows(Integrator integrator) {
               std::max(0.0, -gap), 1.25e-3, "penetration limit: 1e-3 x half the model size")};
 }
 
-// Housner (1963): the rocking block falls back about its corner and first strikes the floor
-// after t1 = arccosh(alpha / (alpha - theta0)) / p, p = sqrt(3 g / 4 R) (the linearised
-// equation, within 0.5 % of the exact one at this tilt), and each impact keeps r^2 of the
-// rocking energy, r = 1 - 1.5 sin^2(alpha). Peaks of |tilt| between sign changes give the
-// energy kept by each of the first three impacts.
+// Housner (1963, verify/analytic.hpp): the block first strikes the floor after t1, and each
+// impact keeps r^2 of the rocking energy; the peaks of its tilt give the share each of the
+// first three impacts kept.
 std::vector<CheckRow> rocking_rows(Integrator integrator) {
+  const RockingSetup setup;
   const Scene scene = rocking_block_scene();
   const SimulationResult r = simulate(with_solver(scene, integrator));
   const std::string name = "rocking block 1 x 4.5 m";
   if (r.summary.status != RunStatus::Completed)
     return {row(name, "run failed: " + r.summary.message, 0, NAN, NAN, 0.03, "")};
-  const double alpha = std::atan(kRockingBase / kRockingHeight), theta0 = kRockingTiltShare * alpha;
-  const double R = 0.5 * std::hypot(kRockingBase, kRockingHeight), g = scene.gravity.norm();
-  const double t1 = std::acosh(alpha / (alpha - theta0)) / std::sqrt(3.0 * g / (4.0 * R));
-  const double rr = std::pow(1.0 - 1.5 * std::pow(std::sin(alpha), 2), 2);
-  double first = NAN, peak = 0.0;
-  int sign = 0;
-  std::vector<double> peaks;
-  for (size_t k = 0; k + 1 < r.history.size(); k += 2) {  // rows: base, top at each output
-    const Vec2 axis = r.history[k + 1].position - r.history[k].position;
-    const double tilt = std::atan2(axis.x(), axis.y());
-    const int now = tilt > 0.0 ? 1 : -1;
-    if (sign != 0 && now != sign) {
-      if (std::isnan(first)) first = r.history[k].time;
-      peaks.push_back(peak);
-      peak = 0.0;
-    }
-    sign = now;
-    peak = std::max(peak, std::abs(tilt));
-  }
-  const auto energy = [&](double theta) { return std::cos(alpha - theta) - std::cos(alpha); };
+  const HousnerRocking housner{setup.base, setup.height, scene.gravity.norm()};
+  const double t1 = housner.first_impact(setup.tilt_share * housner.alpha()), rr = housner.energy_kept();
+  const RockingTrace trace = rocking_trace(r.history);
+  const double first = trace.first_impact < 0.0 ? NAN : trace.first_impact;
   double most = NAN, least = NAN;
-  for (size_t k = 0; k + 1 < peaks.size() && k < 3; ++k) {
-    const double share = energy(peaks[k + 1]) / energy(peaks[k]);
+  for (size_t k = 0; k + 1 < trace.peaks.size() && k < 3; ++k) {
+    const double share = housner.energy(trace.peaks[k + 1]) / housner.energy(trace.peaks[k]);
     most = std::isnan(most) ? share : std::max(most, share);
     least = std::isnan(least) ? share : std::min(least, share);
   }

@@ -12,9 +12,10 @@
 // Only blocks that touch something move; blocks in flight are left exactly as given.
 // A pass that would move a block more than `max_shift` is not applied: such a block is
 // not near equilibrium (a block balanced on a corner), and the dynamics take over. A block
-// that falls more slowly (a pass moves it further than the pass before)
-// starts where it was given, with every free block touching it, and the rest settle again
-// without them (settle_contacts.cpp, kFallingRatio).
+// that falls more slowly (a pass turns it about a point it rests on, further than the pass
+// before or by more than a strain's worth) starts where it was given, with every free block
+// touching it, and the rest settle again without them (settle_contacts.cpp: kFallingRatio,
+// kPivotShare, kFallingTurn).
 #pragma once
 
 #include <vector>
