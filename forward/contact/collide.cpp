@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "forward/contact/contact_law.hpp"
 #include "forward/contact/manifold.hpp"
@@ -35,33 +36,71 @@ const ContactManifold* previous_of(const std::vector<ContactManifold>& previous,
   return it != previous.end() && it->piece_a == a && it->piece_b == b ? &*it : nullptr;
 }
 
-// A point whose features touched in the last step carries its state: the substep
-// solver's impulses (warm start), the implicit solver's spring state, and its bond. A new
-// point starts unloaded; the implicit solver takes it as locked where it touches (within
-// the slop: blocks tiled flush at t = 0 touch at separations of +-1e-15 m). Either way its
-// spring's state is the state at the start of this step.
-void carry_over(const ContactManifold* old, double slop, ContactPoint& p) {
-  const auto start_step = [](SpringState& c) {
-    c.step_state = c.state;
-    c.state_changes = 0;
-    c.shear_scale = 1.0f;
-  };
-  if (old) {
-    for (int k = 0; k < old->point_count; ++k) {
-      const ContactPoint& o = old->points[k];
-      if (o.id != p.id) continue;
-      p.impulse.normal = o.impulse.normal;
-      p.impulse.tangent = o.impulse.tangent;
-      p.impulse.carried = o.impulse.carried;
-      p.spring = o.spring;
-      p.bonded = o.bonded;
-      p.fresh = false;
-      start_step(p.spring);
-      return;
-    }
-  }
-  p.spring.state = p.separation <= slop ? ContactState::Locked : ContactState::Open;
+void start_step(SpringState& c) {
+  c.step_state = c.state;
+  c.state_changes = 0;
+  c.shear_scale = 1.0f;
+}
+
+void take_state(const ContactPoint& o, ContactPoint& p) {
+  p.impulse.normal = o.impulse.normal;
+  p.impulse.tangent = o.impulse.tangent;
+  p.impulse.carried = o.impulse.carried;
+  p.spring = o.spring;
+  p.bonded = o.bonded;
+  p.fresh = false;
   start_step(p.spring);
+}
+
+// The share of the new points' spacing within which a bonded point of the last step is the
+// same point found again by place (carry_over).
+constexpr double kPlaceShare = 0.25;
+
+// A point of the last step carries its state into this step: the substep solver's impulses
+// (warm start), the implicit solver's spring state, and its bond; its spring's state is the
+// state at the start of this step. A new point starts unloaded and unbonded; the implicit solver
+// takes it as locked where it touches (within the slop: blocks tiled flush at t = 0 touch at
+// separations of +-1e-15 m).
+// A point is the last step's point with its features, or else, if that point was bonded, the
+// nearest bonded point not taken within kPlaceShare of the new points' spacing and within the
+// margin (the most two blocks move against each other in a step). Where two faces lie flush
+// (a block hung under another, equal blocks stacked) either face may be the reference, and the
+// choice flips between steps as the blocks turn by micro-radians: the clipped points then carry
+// the other block's features at the same places. Matched by features alone, a flip broke every
+// bond of the joint (model revision 2026-12-03.2): the substep solver dropped all 96 chains of
+// 1-8 blocks hung under a roof by bonds of 1.5-10 times their weight, at the first step
+// (tests/test_bonds.cpp). An unbonded point keeps the features-only match: carried across a
+// flip by place, its load is the resting column's warm start, but also the blow of an impact
+// that the impact groups' margins were measured without (docs/theory.md §13, "A flipped face
+// drops its load").
+void carry_over(const ContactManifold* old, double slop, double margin, ContactManifold& m) {
+  bool taken[2] = {false, false}, matched[2] = {false, false};
+  for (int q = 0; old && q < m.point_count; ++q)
+    for (int k = 0; k < old->point_count; ++k)
+      if (!taken[k] && old->points[k].id == m.points[q].id) {
+        take_state(old->points[k], m.points[q]);
+        taken[k] = matched[q] = true;
+        break;
+      }
+  const double spacing = m.point_count == 2 ? (m.points[0].anchor - m.points[1].anchor).norm()
+                                            : std::numeric_limits<double>::infinity();
+  const double reach = std::min(kPlaceShare * spacing, margin);
+  for (int q = 0; q < m.point_count; ++q) {
+    if (matched[q]) continue;
+    ContactPoint& p = m.points[q];
+    int nearest = -1;
+    double best = reach;
+    for (int k = 0; old && k < old->point_count; ++k)
+      if (const double d = (old->points[k].anchor - p.anchor).norm(); !taken[k] && old->points[k].bonded && d <= best)
+        best = d, nearest = k;
+    if (nearest >= 0) {
+      take_state(old->points[nearest], p);
+      taken[nearest] = true;
+      continue;
+    }
+    p.spring.state = p.separation <= slop ? ContactState::Locked : ContactState::Open;
+    start_step(p.spring);
+  }
 }
 
 // Seed Eq. 2's overriding block of a pair: the free one if the other is fixed, else the
@@ -237,8 +276,8 @@ std::string collide(const BlockSystem& s, ContactDetection& detection, const std
       p.ra = mp.point - s.blocks[out.block_a].centroid;
       p.rb = mp.point - s.blocks[out.block_b].centroid;
       p.owner = shapes.corners[shapes.pieces[mp.owner == 0 ? a : b].first + mp.vertex];
-      carry_over(old, settings.linear_slop, p);
     }
+    carry_over(old, settings.linear_slop, settings.margin, out);
     // The sliding face: the overriding block's face in this manifold, through this interface.
     out.overriding_block = overriding_block(s, out, settings.gravity);
     const bool on_a = out.overriding_block == out.block_a;
