@@ -133,6 +133,10 @@ TEST(RestingColumn, SplitImpulsesHoldATenBlockColumnListedTopDown) { expect_spli
 // work since t = 0 turns negative and a small burst of motion trips the energy audit
 // (docs/theory.md §13, "Limits of the substep solver").
 // The other 33 hold within the bounds above.
+// Cause found 2026-12-03 (docs/theory.md §13, "A flipped face drops its load"): the joint that
+// "stops carrying" had flipped its reference face between two steps, and its points came back
+// with new keys and no impulse. Found again by place, all 36 hold; that is not kept for
+// unbonded points, because the impact sweeps' margins rely on the blow being dropped the same way.
 TEST(RestingColumn, DISABLED_SplitImpulsesHoldATenBlockColumnWithTheFloorListedLast) {
   expect_split_impulses_hold_the_columns(false, true);
   expect_split_impulses_hold_the_columns(true, true);
