@@ -82,6 +82,7 @@ void carry_over(const ContactManifold* old, double slop, double margin, ContactM
         taken[k] = matched[q] = true;
         break;
       }
+  if (matched[0] && (m.point_count < 2 || matched[1])) return;  // the common case: nothing to seek
   const double spacing = m.point_count == 2 ? (m.points[0].anchor - m.points[1].anchor).norm()
                                             : std::numeric_limits<double>::infinity();
   const double reach = std::min(kPlaceShare * spacing, margin);
@@ -91,8 +92,8 @@ void carry_over(const ContactManifold* old, double slop, double margin, ContactM
     int nearest = -1;
     double best = reach;
     for (int k = 0; old && k < old->point_count; ++k)
-      if (const double d = (old->points[k].anchor - p.anchor).norm(); !taken[k] && old->points[k].bonded && d <= best)
-        best = d, nearest = k;
+      if (!taken[k] && old->points[k].bonded)
+        if (const double d = (old->points[k].anchor - p.anchor).norm(); d <= best) best = d, nearest = k;
     if (nearest >= 0) {
       take_state(old->points[nearest], p);
       taken[nearest] = true;
