@@ -7,6 +7,6 @@
 
 namespace ddafit {
 
-inline constexpr const char* kModelRevision = "2026-12-03.2";
+inline constexpr const char* kModelRevision = "2026-12-03.3";
 
 }  // namespace ddafit

@@ -48,6 +48,7 @@ void take_state(const ContactPoint& o, ContactPoint& p) {
   p.impulse.carried = o.impulse.carried;
   p.spring = o.spring;
   p.bonded = o.bonded;
+  p.bond_slip = o.bond_slip;
   p.fresh = false;
   start_step(p.spring);
 }
@@ -141,7 +142,7 @@ void drop_shared_corners(const BlockSystem& s, std::vector<ContactManifold>& man
   for (size_t i = 0; i < on_fixed.size(); ++i)
     for (size_t j = i + 1; j < on_fixed.size() && on_fixed[j].first == on_fixed[i].first; ++j) {
       const int b = on_fixed[i].first;
-      const ContactManifold& first = manifolds[on_fixed[i].second];
+      ContactManifold& first = manifolds[on_fixed[i].second];
       ContactManifold& second = manifolds[on_fixed[j].second];
       if (first.block_a == second.block_a && first.block_b == second.block_b) continue;  // pieces of one pair
       // Both normals seen from block b (pointing towards it).
@@ -151,6 +152,10 @@ void drop_shared_corners(const BlockSystem& s, std::vector<ContactManifold>& man
       for (int p = 0; p < first.point_count; ++p)
         for (int q = 0; q < second.point_count; ++q) {
           if ((first.points[p].anchor - second.points[q].anchor).norm() > slop) continue;
+          // The copy kept carries the bond of both: each stood for half of its own face's
+          // length (collide), and without the dropped half a block bonded across short
+          // joints held by little more than half its bonded length.
+          first.points[p].bond_length += second.points[q].bond_length;
           second.points[q] = second.points[second.point_count - 1];
           --second.point_count;
           --q;

@@ -94,6 +94,7 @@ struct ContactPoint {
   // bond_length while the bond holds; it forms only between blocks touching at t = 0.
   bool bonded = false;
   double bond_length = 0.0;  // m
+  double bond_slip = 0.0;    // m, slip since the bond formed (contact_law.hpp, wear_bond)
 
   SpringState spring;    // implicit solver
 };

@@ -82,7 +82,7 @@ void assemble(const BlockSystem& s, const ContactSet& contacts, const StepParame
                    key + 1, pair, k, f);
       } else {
         // Sliding: a known friction force opposing the slip of b relative to a.
-        const double force = p.spring.slip_direction * sliding_friction_force(m, p);
+        const double force = p.spring.slip_direction * sliding_friction_force(s.interfaces[m.interface], m, p);
         if (ba.unknown >= 0) f.segment<6>(6 * ba.unknown) -= force * lin.shear_a;
         if (bb.unknown >= 0) f.segment<6>(6 * bb.unknown) -= force * lin.shear_b;
       }

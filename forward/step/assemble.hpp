@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "forward/block_system.hpp"
+#include "forward/contact/contact_law.hpp"
 #include "forward/contact/contact_types.hpp"
 #include "forward/sparse_system.hpp"
 
@@ -58,10 +59,12 @@ inline double locked_shear_stiffness(const SpringState& c, const StepParameters&
   return c.shear_scale * step.shear_penalty;
 }
 
-// Friction force magnitude of a sliding point: N tan(phi), phi from its face's slip history
-// predicted to the middle of the step (forward/contact/contact_law.hpp, seed Eq. 2-3).
-inline double sliding_friction_force(const ContactManifold& m, const ContactPoint& p) {
-  return m.friction * p.spring.normal_force;
+// Friction force magnitude of a sliding point: the Mohr-Coulomb cap N tan(phi) + c l_c, phi
+// from its face's slip history predicted to the middle of the step (seed Eq. 2-3), the
+// cohesion while the point is still bonded: a bond lasts until the point has slid by more
+// than the slop (forward/contact/contact_law.hpp, wear_bond).
+inline double sliding_friction_force(const Interface& face, const ContactManifold& m, const ContactPoint& p) {
+  return coulomb_cap(m.friction, p.spring.normal_force, cohesive_strength(face, p));
 }
 
 // d_s0 of a point that starts (or goes on) sliding: its shear spring trails the slip by the
@@ -70,8 +73,9 @@ inline double sliding_friction_force(const ContactManifold& m, const ContactPoin
 // every stick feeds stick-slip vibration at short steps). One formula for the three places a
 // point slides: settling (settle_contacts.cpp), an impact (new_points.cpp), a step's end
 // (update_blocks.cpp).
-inline double sliding_shear_offset(const ContactManifold& m, const ContactPoint& p, double shear_penalty) {
-  return p.spring.slip_direction * sliding_friction_force(m, p) / shear_penalty;
+inline double sliding_shear_offset(const Interface& face, const ContactManifold& m, const ContactPoint& p,
+                                   double shear_penalty) {
+  return p.spring.slip_direction * sliding_friction_force(face, m, p) / shear_penalty;
 }
 
 }  // namespace ddafit

@@ -49,7 +49,7 @@ void classify(const Interface& face, const ContactManifold& m, ContactPoint& p, 
     // point of sticking has a slip of round-off size of either sign; the allowance (the
     // contact tolerance, plus 1 % of the elastic offset that the friction force gives the
     // shear spring) stops it flipping between sliding and locked from one pass to the next.
-    const double allowance = step.contact_tolerance + 0.01 * sliding_friction_force(m, p) / step.shear_penalty;
+    const double allowance = step.contact_tolerance + 0.01 * sliding_friction_force(face, m, p) / step.shear_penalty;
     if (sliding_slip(c) * c.slip_direction <= -allowance) c.state = ContactState::Locked;
     return;
   }

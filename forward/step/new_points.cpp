@@ -41,7 +41,7 @@ void start_impact_slides(const BlockSystem& s, ContactSet& contacts, const std::
       if (std::abs(slide) <= slip_tolerance) continue;
       c.state = c.step_state = ContactState::Sliding;
       c.slip_direction = slide > 0.0 ? 1.0 : -1.0;
-      c.shear_offset = sliding_shear_offset(m, p, shear_penalty);
+      c.shear_offset = sliding_shear_offset(s.interfaces[m.interface], m, p, shear_penalty);
     }
   }
 }

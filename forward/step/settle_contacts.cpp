@@ -43,8 +43,7 @@ void load_springs(const BlockSystem& s, ContactSet& contacts, const StepParamete
         continue;
       }
       c.state = ContactState::Sliding;
-      break_bond(p);
-      c.shear_offset = sliding_shear_offset(m, p, step.shear_penalty);
+      c.shear_offset = sliding_shear_offset(face, m, p, step.shear_penalty);
     }
   }
 }

@@ -45,7 +45,9 @@ void update_blocks(ImplicitStepContext& ctx, double dt) {
     b.velocity = step_velocity(b, db, dt, ctx.scene.gravity.norm());
     displace_block(s, bid, db, true);
   }
+  const double slop = ctx.detection.settings.linear_slop;
   for (ContactManifold& m : contacts.manifolds) {
+    const Interface& face = s.interfaces[m.interface];
     for (int q = 0; q < m.point_count; ++q) {
       ContactPoint& p = m.points[q];
       SpringState& c = p.spring;
@@ -55,7 +57,6 @@ void update_blocks(ImplicitStepContext& ctx, double dt) {
         c.shear_offset += c.step_slip;  // the spring keeps its offset
         continue;
       }
-      break_bond(p);
       if (c.state == ContactState::Locked) {
         // A capped lock (check_contacts.cpp): its spring carries the force of the softened
         // one, k_s' (d_s0 + d_s), as an offset at full stiffness; the rest of the move is
@@ -63,12 +64,15 @@ void update_blocks(ImplicitStepContext& ctx, double dt) {
         const double moved = c.shear_offset + c.step_slip;
         c.shear_offset = c.shear_scale * moved;
         p.slip = std::abs(moved - c.shear_offset);
-        continue;
-      }
-      if (c.state == ContactState::Sliding) {
+      } else if (c.state == ContactState::Sliding) {
         p.slip = std::abs(sliding_slip(c));  // seed Eq. 2
-        c.shear_offset = sliding_shear_offset(m, p, shear_penalty);  // pre-loaded for a lock
-      } else {
+      }
+      // The bond goes once the point has slid or opened at its strength by more than the slop
+      // (contact_law.hpp, wear_bond): sliding, capped and open points are at it.
+      wear_bond(p, c.state == ContactState::Open ? std::max(c.normal_gap, 0.0) : p.slip, slop);
+      if (c.state == ContactState::Sliding) {
+        c.shear_offset = sliding_shear_offset(face, m, p, shear_penalty);  // pre-loaded for a lock
+      } else if (c.state == ContactState::Open) {
         c.shear_offset = 0.0;
       }
     }

@@ -169,7 +169,7 @@ void run_one_substep(SubstepContext& w, const SweepSettings& sweep, const Vec2& 
     solve_contacts(w.contacts.manifolds, w.colours, relax, w.state);
     converge_deep(w.contacts.manifolds, relax, kDeepIterations, w.state);
   }
-  advance_slip(w.system, w.moves, sweep.h, w.contacts);
+  advance_slip(w.system, w.moves, sweep.h, sweep.linear_slop, w.contacts);
 }
 
 }  // namespace

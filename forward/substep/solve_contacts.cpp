@@ -337,7 +337,8 @@ void correct_positions(const std::vector<ContactManifold>& manifolds, const Posi
   }
 }
 
-void advance_slip(const BlockSystem& s, const std::vector<Vec3>& moves, double h, ContactSet& contacts) {
+void advance_slip(const BlockSystem& s, const std::vector<Vec3>& moves, double h, double tolerance,
+                  ContactSet& contacts) {
   std::vector<ContactManifold>& manifolds = contacts.manifolds;
   const long n = static_cast<long>(manifolds.size());
 #pragma omp parallel for schedule(static) if (n >= kParallelMinimum)
@@ -347,20 +348,24 @@ void advance_slip(const BlockSystem& s, const std::vector<Vec3>& moves, double h
       ContactPoint& p = m.points[q];
       p.impulse.step_normal += p.impulse.normal;
       p.impulse.step_tangent += p.impulse.tangent;
-      if (p.impulse.normal <= -0.999 * p.impulse.tension) {
-        // Open (or torn at its tensile strength): no slip, and the bond is gone.
+      // The bond (contact_law.hpp, wear_bond): lost once the point has slid or opened at its
+      // strength by more than the slop.
+      const double slip = std::abs(relative_rate(m.tangent, p, moves[m.block_a], moves[m.block_b]));
+      if (p.bonded) {
+        const bool sliding =
+            std::abs(p.impulse.tangent) >= 0.999 * coulomb_cap(m.friction, p.impulse.normal, p.impulse.cohesion);
+        const bool torn = p.impulse.normal <= -0.999 * p.impulse.tension;
+        wear_bond(p, (sliding ? slip : 0.0) + (torn ? std::max(normal_rate(m, p, moves), 0.0) : 0.0), tolerance);
+      }
+      if (!p.bonded) p.impulse.cohesion = p.impulse.tension = 0.0;
+      if (p.impulse.normal <= -0.999 * p.impulse.tension && !p.bonded) {
+        // Open: no slip, no load.
         p.slip = 0.0;
         p.normal_load = 0.0;
-        break_bond(p);
-        p.impulse.cohesion = p.impulse.tension = 0.0;
         continue;
       }
-      p.slip = std::abs(relative_rate(m.tangent, p, moves[m.block_a], moves[m.block_b]));
+      p.slip = slip;
       p.normal_load = h > 0.0 ? std::max(p.impulse.normal, 0.0) / h : 0.0;
-      if (p.bonded && std::abs(p.impulse.tangent) >= 0.999 * coulomb_cap(m.friction, p.impulse.normal, p.impulse.cohesion)) {
-        break_bond(p);  // sliding
-        p.impulse.cohesion = p.impulse.tension = 0.0;
-      }
     }
   }
   advance_histories(s, contacts, h);

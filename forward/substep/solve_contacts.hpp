@@ -162,8 +162,10 @@ void correct_positions(const std::vector<ContactManifold>& manifolds, const Posi
 
 // After a substep moved the blocks by `moves`: the slip of each closed point, gathered into
 // its face's slip history (seed Eq. 2, forward/contact/slip_history.hpp), and the friction
-// that follows; a bond is lost once its point slides or opens (contact_law.hpp).
-void advance_slip(const BlockSystem& system, const std::vector<Vec3>& moves, double h, ContactSet& contacts);
+// that follows; a bond is lost once its point has slid or opened at its strength by more
+// than `tolerance` (contact_law.hpp, wear_bond).
+void advance_slip(const BlockSystem& system, const std::vector<Vec3>& moves, double h, double tolerance,
+                  ContactSet& contacts);
 
 // Block b's rate (or move) relative to block a's at the point, along `direction`, from the two
 // blocks' rates: velocities (vx, vy, w) or moves (dx, dy, dtheta).
