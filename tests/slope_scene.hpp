@@ -33,6 +33,19 @@ struct Crossing {
   double weakening_velocity = 0.1;          // v_w (m/s), velocity_weakening
 };
 
+// The n-th case of a sweep that rotates its sliders {length, height} and front gaps through
+// every slope {alpha, phi} and joint spacing, so that each value meets several others.
+[[maybe_unused]] Crossing sweep_case(const double (&slope)[2], const double (&slider)[2], double spacing, int n) {
+  Crossing c;
+  c.slope = slope[0];
+  c.friction = slope[1];
+  c.length = slider[0];
+  c.height = slider[1];
+  c.spacing = spacing;
+  c.front_gap = 0.01 + 0.02 * (n % 3);
+  return c;
+}
+
 [[maybe_unused]] std::string describe(const Crossing& c, Integrator integrator) {
   std::ostringstream out;
   out << name_of(integrator) << ": alpha " << c.slope << ", phi " << c.friction << ", i " << c.roughness;

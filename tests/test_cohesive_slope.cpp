@@ -57,14 +57,7 @@ std::vector<Crossing> bonded_blocks() {
   int n = 0;
   for (const auto& slope : slopes)
     for (const double spacing : {0.3, 1.0, 2.5}) {
-      Crossing c;
-      c.slope = slope[0];
-      c.friction = slope[1];
-      c.length = blocks[n % 4][0];
-      c.height = blocks[n % 4][1];
-      c.spacing = spacing;
-      c.front_gap = 0.01 + 0.02 * (n % 3);
-      out.push_back(c);
+      out.push_back(sweep_case(slope, blocks[n % 4], spacing, n));
       ++n;
     }
   return out;

@@ -47,14 +47,8 @@ std::vector<Crossing> crossing_sweep() {
   for (const auto& slope : slopes)
     for (const double spacing : spacings)
       for (const double speed : {0.0, 4.0}) {
-        Crossing c;
-        c.slope = slope[0];
-        c.friction = slope[1];
-        c.length = sliders[n % 4][0];
-        c.height = sliders[n % 4][1];
-        c.spacing = spacing;
+        Crossing c = sweep_case(slope, sliders[n % 4], spacing, n);
         c.speed = speed;
-        c.front_gap = 0.01 + 0.02 * (n % 3);
         cases.push_back(c);
         ++n;
       }
