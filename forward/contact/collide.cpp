@@ -298,8 +298,11 @@ std::string collide(const BlockSystem& s, ContactDetection& detection, const std
     for (int q = 0; q < m.point_count; ++q) {
       ContactPoint& p = out.points[q];
       p.bond_length = 0.5 * shared;
-      if (settings.first_step && out.interface >= 0)
+      if (settings.first_step && out.interface >= 0) {
+        // Formed afresh (at t = 0, after the quiet start): nothing of it has worn yet.
         p.bonded = forms_bond(s.interfaces[out.interface], p.separation, settings.linear_slop);
+        p.bond_slip = 0.0;
+      }
     }
   }
   drop_shared_corners(s, manifolds, settings.linear_slop);
