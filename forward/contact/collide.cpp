@@ -49,6 +49,7 @@ void take_state(const ContactPoint& o, ContactPoint& p) {
   p.spring = o.spring;
   p.bonded = o.bonded;
   p.bond_slip = o.bond_slip;
+  p.bond_opening = o.bond_opening;
   p.fresh = false;
   start_step(p.spring);
 }
@@ -301,7 +302,7 @@ std::string collide(const BlockSystem& s, ContactDetection& detection, const std
       if (settings.first_step && out.interface >= 0) {
         // Formed afresh (at t = 0, after the quiet start): nothing of it has worn yet.
         p.bonded = forms_bond(s.interfaces[out.interface], p.separation, settings.linear_slop);
-        p.bond_slip = 0.0;
+        p.bond_slip = p.bond_opening = 0.0;
       }
     }
   }

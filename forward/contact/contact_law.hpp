@@ -75,19 +75,22 @@ inline bool forms_bond(const Interface& face, double separation, double slop) {
 inline void break_bond(ContactPoint& p) { p.bonded = false; }
 
 // Slides or opens: moves by more than `tolerance` (m, the solver's own position tolerance)
-// while at its strength, summed since the bond formed; `move` is this (sub)step's slip while
-// |T| is at the Mohr-Coulomb cap tan(phi) N + c l_c, plus its opening while N is at the
-// tension cut-off -T_s l_c. A point at its cap that does not move has not failed: where a
-// block rests on several points the share each carries is the solver's to choose (statically
-// indeterminate), and one point at its cap while the others hold the block is load passing to
-// them. Broken at the cap, a block bonded to a jointed slope by three times the cohesion that
-// holds it slid away on both solvers, bond after bond (tests/test_cohesive_slope.cpp). Nor is
-// a move below the strength a failure: a hung chain's joints open by g h^2 in its first
-// substep while the sweeps take up its weight.
-inline void wear_bond(ContactPoint& p, double move, double tolerance) {
+// while at its strength, counted from where the bond formed. `slip` is this (sub)step's signed
+// slip if |T| is at the Mohr-Coulomb cap tan(phi) N + c l_c (else 0), `opening` its signed
+// opening if N is at the tension cut-off -T_s l_c (else 0); each is summed with its sign, so a
+// point that rocks to and fro at its cap (the implicit solver's elastic blocks do, by 0.1 um a
+// step) has not moved, while one that creeps one way has. A point at its cap that does not move
+// has not failed: where a block rests on several points the share each carries is the solver's
+// to choose (statically indeterminate), and one point at its cap while the others hold the
+// block is load passing to them. Broken at the cap, a block bonded to a jointed slope by three
+// times the cohesion that holds it slid away on both solvers, bond after bond
+// (tests/test_cohesive_slope.cpp). Nor is a move below the strength a failure: a hung chain's
+// joints open by g h^2 in its first substep while the sweeps take up its weight.
+inline void wear_bond(ContactPoint& p, double slip, double opening, double tolerance) {
   if (!p.bonded) return;
-  p.bond_slip += move;
-  if (p.bond_slip > tolerance) break_bond(p);
+  p.bond_slip += slip;
+  p.bond_opening += opening;
+  if (std::abs(p.bond_slip) > tolerance || p.bond_opening > tolerance) break_bond(p);
 }
 
 // Seed Eq. 2: over a (sub)step of `duration` seconds a face's slip grows by the (sub)step's increment, the largest slip of its

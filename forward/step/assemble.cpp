@@ -71,7 +71,20 @@ void assemble(const BlockSystem& s, const ContactSet& contacts, const StepParame
     const int pair = ba.unknown >= 0 && bb.unknown >= 0 ? k.pair(ba.unknown, bb.unknown) : -1;
     for (int q = 0; q < m.point_count; ++q) {
       const ContactPoint& p = m.points[q];
-      if (p.spring.state == ContactState::Open) continue;
+      if (p.spring.state == ContactState::Open) {
+        // Open at the tension cut-off while still bonded: the bond pulls with its strength,
+        // T_s l_c, until it has opened by the slop (contact_law.hpp, wear_bond), as a sliding
+        // bonded point resists with tan(phi) N + c l_c. Dropped at once, the elastic springs'
+        // most stretched point let go first and a column bonded across joints 0.2 m apart by
+        // 1.5 times the strength that holds it toppled bond by bond.
+        const double tension = tensile_capacity(s.interfaces[m.interface], p);
+        if (tension > 0.0) {
+          const PointSprings lin = point_springs(s, m, p);
+          if (ba.unknown >= 0) f.segment<6>(6 * ba.unknown) -= tension * lin.normal_a;
+          if (bb.unknown >= 0) f.segment<6>(6 * bb.unknown) -= tension * lin.normal_b;
+        }
+        continue;
+      }
       const PointSprings lin = point_springs(s, m, p);
       const std::uint64_t key = 4 * static_cast<std::uint64_t>(mi) + 2 * q;  // + 1 for the shear spring
       // Normal spring (p/2) (d_n - reference)^2, unloaded at spring_reference() (assemble.hpp).

@@ -57,19 +57,22 @@ void update_blocks(ImplicitStepContext& ctx, double dt) {
         c.shear_offset += c.step_slip;  // the spring keeps its offset
         continue;
       }
+      double slip = 0.0;  // signed, at strength
       if (c.state == ContactState::Locked) {
         // A capped lock (check_contacts.cpp): its spring carries the force of the softened
         // one, k_s' (d_s0 + d_s), as an offset at full stiffness; the rest of the move is
         // slip (seed Eq. 2), as for a sliding point.
         const double moved = c.shear_offset + c.step_slip;
         c.shear_offset = c.shear_scale * moved;
-        p.slip = std::abs(moved - c.shear_offset);
+        slip = moved - c.shear_offset;
       } else if (c.state == ContactState::Sliding) {
-        p.slip = std::abs(sliding_slip(c));  // seed Eq. 2
+        slip = sliding_slip(c);  // seed Eq. 2
       }
+      p.slip = std::abs(slip);
       // The bond goes once the point has slid or opened at its strength by more than the slop
-      // (contact_law.hpp, wear_bond): sliding, capped and open points are at it.
-      wear_bond(p, c.state == ContactState::Open ? std::max(c.normal_gap, 0.0) : p.slip, slop);
+      // (contact_law.hpp, wear_bond): sliding and capped points are at it, and open ones
+      // (the tension cut-off), which opened by the step's change of gap.
+      wear_bond(p, slip, c.state == ContactState::Open ? c.normal_gap - p.separation : 0.0, slop);
       if (c.state == ContactState::Sliding) {
         c.shear_offset = sliding_shear_offset(face, m, p, shear_penalty);  // pre-loaded for a lock
       } else if (c.state == ContactState::Open) {

@@ -350,12 +350,12 @@ void advance_slip(const BlockSystem& s, const std::vector<Vec3>& moves, double h
       p.impulse.step_tangent += p.impulse.tangent;
       // The bond (contact_law.hpp, wear_bond): lost once the point has slid or opened at its
       // strength by more than the slop.
-      const double slip = std::abs(relative_rate(m.tangent, p, moves[m.block_a], moves[m.block_b]));
+      const double slip = relative_rate(m.tangent, p, moves[m.block_a], moves[m.block_b]);
       if (p.bonded) {
         const bool sliding =
             std::abs(p.impulse.tangent) >= 0.999 * coulomb_cap(m.friction, p.impulse.normal, p.impulse.cohesion);
         const bool torn = p.impulse.normal <= -0.999 * p.impulse.tension;
-        wear_bond(p, (sliding ? slip : 0.0) + (torn ? std::max(normal_rate(m, p, moves), 0.0) : 0.0), tolerance);
+        wear_bond(p, sliding ? slip : 0.0, torn ? normal_rate(m, p, moves) : 0.0, tolerance);
       }
       if (!p.bonded) p.impulse.cohesion = p.impulse.tension = 0.0;
       if (p.impulse.normal <= -0.999 * p.impulse.tension && !p.bonded) {
@@ -364,7 +364,7 @@ void advance_slip(const BlockSystem& s, const std::vector<Vec3>& moves, double h
         p.normal_load = 0.0;
         continue;
       }
-      p.slip = slip;
+      p.slip = std::abs(slip);
       p.normal_load = h > 0.0 ? std::max(p.impulse.normal, 0.0) / h : 0.0;
     }
   }
