@@ -303,12 +303,7 @@ TEST_P(ShortBlocksSweep, SlidersFollowSeedEq4AtEverySlopeSizeAndSpeed) {
     for (const auto& slider : sliders)
       for (const double spacing : {0.08, 0.14, 0.3})
         for (const double speed : {0.0, 2.0}) {
-          Crossing c;
-          c.slope = slope[0];
-          c.friction = slope[1];
-          c.length = slider[0];
-          c.height = slider[1];
-          c.spacing = spacing;
+          Crossing c = sweep_case(slope, slider, spacing, 0);
           c.speed = speed;
           c.front_gap = 0.03;
           // The substep solver as it runs by default, with split impulses. Its soft step
