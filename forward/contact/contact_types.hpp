@@ -94,8 +94,9 @@ struct ContactPoint {
   // bond_length while the bond holds; it forms only between blocks touching at t = 0.
   bool bonded = false;
   double bond_length = 0.0;  // m
-  double bond_slip = 0.0;     // m, signed slip at strength since the bond formed (contact_law.hpp,
-  double bond_opening = 0.0;  // m, and opening at strength                          wear_bond)
+  // Signed slip and opening at strength since the bond formed, m (contact_law.hpp, wear_bond).
+  double bond_slip = 0.0;
+  double bond_opening = 0.0;
 
   SpringState spring;    // implicit solver
 };
