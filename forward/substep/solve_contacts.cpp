@@ -348,23 +348,23 @@ void advance_slip(const BlockSystem& s, const std::vector<Vec3>& moves, double h
       ContactPoint& p = m.points[q];
       p.impulse.step_normal += p.impulse.normal;
       p.impulse.step_tangent += p.impulse.tangent;
-      // The bond (contact_law.hpp, wear_bond): lost once the point has slid or opened at its
-      // strength by more than the slop.
-      const double slip = relative_rate(m.tangent, p, moves[m.block_a], moves[m.block_b]);
       if (p.bonded) {
+        // The bond (contact_law.hpp, wear_bond): lost once the point has slid or opened at
+        // its strength by more than the slop.
         const bool sliding =
             std::abs(p.impulse.tangent) >= 0.999 * coulomb_cap(m.friction, p.impulse.normal, p.impulse.cohesion);
         const bool torn = p.impulse.normal <= -0.999 * p.impulse.tension;
-        wear_bond(p, sliding ? slip : 0.0, torn ? normal_rate(m, p, moves) : 0.0, tolerance);
+        wear_bond(p, sliding ? relative_rate(m.tangent, p, moves[m.block_a], moves[m.block_b]) : 0.0,
+                  torn ? normal_rate(m, p, moves) : 0.0, tolerance);
+        if (!p.bonded) p.impulse.cohesion = p.impulse.tension = 0.0;
       }
-      if (!p.bonded) p.impulse.cohesion = p.impulse.tension = 0.0;
-      if (p.impulse.normal <= -0.999 * p.impulse.tension && !p.bonded) {
+      if (!p.bonded && p.impulse.normal <= 0.0) {
         // Open: no slip, no load.
         p.slip = 0.0;
         p.normal_load = 0.0;
         continue;
       }
-      p.slip = std::abs(slip);
+      p.slip = std::abs(relative_rate(m.tangent, p, moves[m.block_a], moves[m.block_b]));
       p.normal_load = h > 0.0 ? std::max(p.impulse.normal, 0.0) / h : 0.0;
     }
   }
