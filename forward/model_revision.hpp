@@ -7,6 +7,6 @@
 
 namespace ddafit {
 
-inline constexpr const char* kModelRevision = "2026-12-03.3";
+inline constexpr const char* kModelRevision = "2026-12-03.4";
 
 }  // namespace ddafit

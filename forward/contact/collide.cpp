@@ -169,17 +169,29 @@ void drop_shared_corners(const BlockSystem& s, std::vector<ContactManifold>& man
                     manifolds.end());
 }
 
-// Per block, the mean direction its touching contacts of the last step pushed it (from its
-// supports towards it), unit or zero: ManifoldSettings::support_a/b.
+// Per block, the direction its touching contacts of the last step pushed it (from its
+// supports towards it), unit or zero: ManifoldSettings::support_a/b. The sum of the normal
+// forces: a block that carries another is pushed down by the load and up from below by the
+// load and its own weight, so it is pushed up. Counting each touching point once (until
+// revision 2026-12-03.4) cancelled the two, and a slab carrying a block of its own size had
+// no support: at the first flush joint its front face took the joint face and held it there
+// (docs/theory.md §3, "Flush faces"). A block whose touching points carry no load (the first
+// step, a block just landed) keeps the count.
 std::vector<Vec2> supports(const BlockSystem& s, const std::vector<ContactManifold>& previous, double slop) {
-  std::vector<Vec2> push(s.blocks.size(), Vec2::Zero());
+  std::vector<Vec2> push(s.blocks.size(), Vec2::Zero()), count(s.blocks.size(), Vec2::Zero());
   for (const ContactManifold& m : previous) {
     int touching = 0;
-    for (int q = 0; q < m.point_count; ++q) touching += m.points[q].separation <= slop;
-    push[m.block_b] += touching * m.normal;
-    push[m.block_a] -= touching * m.normal;
+    double load = 0.0;
+    for (int q = 0; q < m.point_count; ++q)
+      if (m.points[q].separation <= slop) ++touching, load += m.points[q].normal_load;
+    push[m.block_b] += load * m.normal;
+    push[m.block_a] -= load * m.normal;
+    count[m.block_b] += touching * m.normal;
+    count[m.block_a] -= touching * m.normal;
   }
-  for (Vec2& v : push) {
+  for (size_t b = 0; b < push.size(); ++b) {
+    Vec2& v = push[b];
+    if (v.norm() == 0.0) v = count[b];
     const double length = v.norm();
     v = length > 0.0 ? Vec2(v / length) : Vec2::Zero();
   }

@@ -63,8 +63,9 @@ struct ManifoldSettings {
   // "Flush faces", and "Flush neighbours" judged on the part of a polygon near the line;
   // off, the whole polygon must lie beside a face and the separating axis decides the rest.
   bool flush_faces = true;
-  // Unit or zero: the mean direction in which each polygon's block was pushed by its
-  // touching contacts in the last step (from its supports towards it); ranks flush faces.
+  // Unit or zero: the direction in which each polygon's block was pushed by its touching
+  // contacts in the last step (their normal forces' sum, from its supports towards it);
+  // ranks flush faces.
   Vec2 support_a = Vec2::Zero(), support_b = Vec2::Zero();
 };
 
