@@ -17,8 +17,8 @@
 // same pair as one 2 x 0.25 m block crossed: the "Flush faces" and "Proud edges" rules
 // (forward/contact/manifold.hpp) rank the faces a corner meets by the direction the block was
 // pushed in the last step, and that direction counted each touching point once, so the push
-// down from the block above cancelled the push up from the slope. Weighted by the points'
-// loads it points up (forward/contact/collide.cpp, supports).
+// down from the block above cancelled the push up from the slope. Now only the points that
+// push a block up count (forward/contact/collide.cpp, supports).
 //
 // Tolerances and why: test_joint_crossing.cpp's (1 % of Eq. 4 at every output where a block
 // has moved 1 cm; the energy audit and overlaps of contact_scene_audit.hpp). A hooked block
@@ -188,6 +188,65 @@ TEST_P(StackedSlider, EveryBlockOfASlabFollowsSeedEq4AcrossJoints) {
   }
   std::printf("[measured] %s: %zu slabs, every block within %.2g of seed Eq. 4 (worst: %s)\n", name_of(integrator).c_str(),
               sweep.size(), worst, worst_case.c_str());
+}
+
+// A two-layer slider on a row of free blocks 0.3 m thick that rest on a fixed plane (held to it
+// and to each other at 60 deg): the row's blocks under the slider sink micrometres deeper than
+// the one ahead (test_free_row.cpp, "Proud edges"). Slopes 15/8, 28/18 and 35/5 deg; rows of
+// 0.4 and 1.0 m blocks; sliders 3 x 1.5, 1.2 x 0.6 and 2 x 0.5 m, the bottom block a quarter,
+// half and 0.3 of the height. Both blocks within 1 % of Eq. 4 and overlaps under 1 %. Found
+// while choosing the support rule: weighted by the points' loads, the implicit solver's 3 x
+// 0.375 m block under a 3 x 1.125 m one at 35/5 deg, row of 1.0 m, took a joint face at 2.9 m
+// and fell 19 % behind Eq. 4 (docs/theory.md §3). The implicit solver's rows of 0.4 m at 28
+// and 35 deg are left out (a minute of the suite's time; its single-block row tests cover them).
+TEST_P(StackedSlider, ATwoLayerSliderCrossesARowOfFreeBlocks) {
+  const Integrator integrator = GetParam();
+  double worst = 0.0;
+  int runs = 0;
+  for (const auto& [slope_angle, friction] : {std::pair{15.0, 8.0}, {28.0, 18.0}, {35.0, 5.0}})
+    for (const double row_length : {0.4, 1.0})
+      for (const auto& [length, height, bottom] : {std::tuple{3.0, 1.5, 0.25}, {1.2, 0.6, 0.5}, {2.0, 0.5, 0.3}}) {
+        if (integrator == Integrator::Implicit && row_length < 0.5 && slope_angle > 20.0) continue;
+        Scene s = base_scene(kDuration, kStep, kOutput, integrator);
+        const int holds = add_interface(s, "holds", 60.0);
+        const int slides = add_interface(s, "slides", friction);
+        const int rough = add_interface(s, "rough", std::min(friction + 15.0, 50.0));
+        s.contact_rules = {{"plane", "row", holds}, {"row", "row", holds}, {"slider", "row", slides},
+                           {"slider", "slider", rough}};
+        s.default_interface = slides;
+        const Slope slope(slope_angle);
+        const double row_height = 0.3, plane = 14.0, rear = 0.1;
+        s.blocks.push_back(
+            block("plane", {slope.at(0, 0), slope.at(0, -1), slope.at(plane, -1), slope.at(plane, 0)}, true, 0, "plane"));
+        for (int j = 0; j * row_length < plane - 1e-9; ++j)
+          s.blocks.push_back(block("row_" + std::to_string(j),
+                                   box(slope.at(j * row_length, 0), slope.along, slope.up, row_length, row_height),
+                                   false, 0, "row"));
+        const double h0 = bottom * height;
+        s.blocks.push_back(
+            block("bottom", box(slope.at(rear, row_height), slope.along, slope.up, length, h0), false, 0, "slider"));
+        s.blocks.push_back(block("top", box(slope.at(rear, row_height + h0), slope.along, slope.up, length, height - h0),
+                                 false, 0, "slider"));
+        s.measure.push_back({"bottom", slope.at(rear + 0.5 * length, row_height + 0.5 * h0)});
+        s.measure.push_back({"top", slope.at(rear + 0.5 * length, row_height + 0.5 * (h0 + height))});
+        const SimulationResult r = simulate(s);
+        char label[200];
+        std::snprintf(label, sizeof label, "%s: %g/%g deg, row of %g m, slider %g x %g m (bottom %g of it)",
+                      name_of(integrator).c_str(), slope_angle, friction, row_length, length, height, bottom);
+        ASSERT_EQ(r.summary.status, RunStatus::Completed) << label << ": " << r.summary.message;
+        EXPECT_LT(r.summary.solver.worst_penetration_ratio, kMaxPenetrationRatio) << label;
+        const double a = eq4_acceleration(slope_angle, friction);
+        double error = 0.0;
+        for (const HistoryRow& h : r.history) {
+          const double exact = 0.5 * a * h.time * h.time;
+          if (exact >= 0.01) error = std::max(error, std::abs(h.displacement.dot(slope.along) - exact) / exact);
+        }
+        EXPECT_LT(error, kDisplacementTolerance) << label;
+        worst = std::max(worst, error);
+        ++runs;
+      }
+  std::printf("[measured] %s: %d two-layer sliders over free rows, both blocks within %.2g of seed Eq. 4\n",
+              name_of(integrator).c_str(), runs, worst);
 }
 
 INSTANTIATE_TEST_SUITE_P(BothSolvers, StackedSlider, ::testing::Values(Integrator::Implicit, Integrator::Substep),

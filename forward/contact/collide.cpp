@@ -169,33 +169,41 @@ void drop_shared_corners(const BlockSystem& s, std::vector<ContactManifold>& man
                     manifolds.end());
 }
 
-// Per block, the direction its touching contacts of the last step pushed it (from its
-// supports towards it), unit or zero: ManifoldSettings::support_a/b. The sum of the normal
-// forces: a block that carries another is pushed down by the load and up from below by the
-// load and its own weight, so it is pushed up. Counting each touching point once (until
-// revision 2026-12-03.4) cancelled the two, and a slab carrying a block of its own size had
-// no support: at the first flush joint its front face took the joint face and held it there
-// (docs/theory.md §3, "Flush faces"). A block whose touching points carry no load (the first
-// step, a block just landed) keeps the count.
-std::vector<Vec2> supports(const BlockSystem& s, const std::vector<ContactManifold>& previous, double slop) {
-  std::vector<Vec2> push(s.blocks.size(), Vec2::Zero()), count(s.blocks.size(), Vec2::Zero());
+// Per block, the direction it was held up from in the last step, unit or zero
+// (ManifoldSettings::support_a/b): the mean normal, pointing into it, of its touching points
+// that push it up (their normal against gravity by more than a tenth). A block none of whose
+// points does (or a scene without gravity) takes all its touching points.
+// Why only the points that push up: a block that carries another is pushed down by it as
+// often as up by what it rests on, and counted together the two cancelled (until revision
+// 2026-12-03.4): the block had no support, and at the first flush joint its front face took
+// the joint face and held it there, a 2 x 0.125 m block carrying one as large stopped dead
+// (docs/theory.md §3, "Flush faces"). Weighting every point by its load instead is not robust
+// either: the implicit solver's loads swing by half within a step's open-close iterations,
+// and a thin block under a heavy one (3 x 0.375 m under 3 x 1.125 m on a free row, 35 deg)
+// was then pushed down on balance, took a joint face and fell 19 % behind seed Eq. 4.
+std::vector<Vec2> supports(const BlockSystem& s, const std::vector<ContactManifold>& previous, double slop,
+                           const Vec2& gravity) {
+  constexpr double kUpward = 0.1;
+  const double g = gravity.norm();
+  const Vec2 up = g > 0.0 ? Vec2(-gravity / g) : Vec2::Zero();
+  std::vector<Vec2> held(s.blocks.size(), Vec2::Zero()), all(s.blocks.size(), Vec2::Zero());
+  const auto add = [&](int block, const Vec2& into, int touching) {
+    all[block] += touching * into;
+    if (into.dot(up) > kUpward) held[block] += touching * into;
+  };
   for (const ContactManifold& m : previous) {
     int touching = 0;
-    double load = 0.0;
-    for (int q = 0; q < m.point_count; ++q)
-      if (m.points[q].separation <= slop) ++touching, load += m.points[q].normal_load;
-    push[m.block_b] += load * m.normal;
-    push[m.block_a] -= load * m.normal;
-    count[m.block_b] += touching * m.normal;
-    count[m.block_a] -= touching * m.normal;
+    for (int q = 0; q < m.point_count; ++q) touching += m.points[q].separation <= slop;
+    add(m.block_b, m.normal, touching);
+    add(m.block_a, -m.normal, touching);
   }
-  for (size_t b = 0; b < push.size(); ++b) {
-    Vec2& v = push[b];
-    if (v.norm() == 0.0) v = count[b];
+  for (size_t b = 0; b < held.size(); ++b) {
+    Vec2& v = held[b];
+    if (v.norm() == 0.0) v = all[b];
     const double length = v.norm();
     v = length > 0.0 ? Vec2(v / length) : Vec2::Zero();
   }
-  return push;
+  return held;
 }
 
 }  // namespace
@@ -218,7 +226,7 @@ std::string collide(const BlockSystem& s, ContactDetection& detection, const std
   // that touch, in place (no full manifold per pair of boxes, no copy).
   const long n = static_cast<long>(pairs.size());
   geometry.resize(pairs.size());
-  const std::vector<Vec2> support = supports(s, contacts.manifolds, settings.linear_slop);
+  const std::vector<Vec2> support = supports(s, contacts.manifolds, settings.linear_slop, settings.gravity);
   // Handed out in chunks: a pair of boxes that barely overlap costs little, one whose pieces
   // touch a full manifold, and they are not spread evenly along the sorted pairs. In two
   // static halves one thread waited for the other (on Vajont section VII degraded's first

@@ -63,8 +63,8 @@ struct ManifoldSettings {
   // "Flush faces", and "Flush neighbours" judged on the part of a polygon near the line;
   // off, the whole polygon must lie beside a face and the separating axis decides the rest.
   bool flush_faces = true;
-  // Unit or zero: the direction in which each polygon's block was pushed by its touching
-  // contacts in the last step (their normal forces' sum, from its supports towards it);
+  // Unit or zero: the direction each polygon's block was held up from in the last step (the
+  // mean normal of its touching contacts that push it up, from its supports towards it);
   // ranks flush faces.
   Vec2 support_a = Vec2::Zero(), support_b = Vec2::Zero();
 };
