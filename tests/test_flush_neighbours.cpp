@@ -6,6 +6,7 @@
 // has crossed, and both orders of the pair.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -222,6 +223,59 @@ TEST(ProudEdges, AStepHigherThanTheSlopStopsTheCorner) {
           EXPECT_LT((m.normal - expected).norm(), 1e-9);
           EXPECT_NEAR(deepest(m), -crossed, 1e-9 * w + 1e-10);
         }
+}
+
+// Four blocks of two layers meeting at one corner on a cut that leans through both (a slab cut
+// into columns on a slope): the top layer rests about the slop deep in the bottom one (up to
+// 1.5 slop here) and may have sheared forward on it by up to the slop, so the two blocks that
+// touch only at that corner (the top rear and bottom front where the cut leans forward) overlap
+// there by the resting depth along the layers' face and by a share of it plus the shear along
+// the cut's. The contact is the layers' face, through which both blocks are held up, even where
+// the overlap along the cut is the smaller one; the cut's face pushed the two columns of the slab
+// apart (tests/test_stacked_slider.cpp: 2.2 % off seed Eq. 4 until revision 2026-12-03.5, whose
+// "Proud edges" window stopped at one slop; 144 of these 972 cases took the cut's face then).
+// Swept over slopes, leans either way (the mirror takes the other pair), block sizes, resting
+// depths and shears up to the slop, and both orders of the pair.
+TEST(ProudEdges, AJunctionOfFourBlocksOnALeaningCutTouchesThroughTheLayersFace) {
+  int checked = 0;
+  for (const double slope : {0.0, 15.0, 35.0})
+    for (const double lean : {20.0, 30.0, 45.0})
+      for (const bool mirrored : {false, true})
+        for (const double w : {0.15, 1.0, 8.2})
+          for (const double depth_share : {0.5, 1.0, 1.5})
+            for (const double shear_share : {0.0, 0.5, 1.0})
+              for (const bool bottom_first : {true, false}) {
+                const double slop = 5e-5 * w, depth = depth_share * slop, shear = shear_share * slop;
+                const double a = slope * kDegree, l = lean * kDegree;
+                const Vec2 along(std::cos(a), -std::sin(a)), up(std::sin(a), std::cos(a));
+                const Vec2 cut = std::cos(l) * up + std::sin(l) * along;
+                // A block with its rear foot at `o`, w along the slope and `h` up the cut.
+                const auto block = [&](const Vec2& o, double h) {
+                  std::vector<Vec2> q = {o, o + w * along, o + w * along + h * cut, o + h * cut};
+                  if (mirrored) {
+                    for (Vec2& v : q) v.x() = 2.0 * kFar.x() - v.x();
+                    std::reverse(q.begin(), q.end());  // counter-clockwise again
+                  }
+                  return q;
+                };
+                const Vec2 sunk = kFar - depth * up + shear * along;  // the top layer's corner
+                const std::vector<Vec2> bottom_front = block(kFar - 0.5 * w * cut, 0.5 * w);
+                const std::vector<Vec2> top_rear = block(sunk - w * along, 0.75 * w);
+                const Vec2 held_up = mirrored ? Vec2(-up.x(), up.y()) : up;
+                SCOPED_TRACE(testing::Message() << "slope " << slope << " deg, cut leaning " << (mirrored ? -lean : lean)
+                                                << " deg, block " << w << " m, top layer " << depth_share
+                                                << " slop deep, sheared " << shear_share << " slop, bottom block "
+                                                << (bottom_first ? "a" : "b"));
+                const ManifoldSettings ms = free_pair(w, held_up);
+                const Manifold m = bottom_first ? collide_polygons(bottom_front, top_rear, ms)
+                                                : collide_polygons(top_rear, bottom_front, ms);
+                ASSERT_GE(m.point_count, 1);
+                const Vec2 expected = bottom_first ? held_up : Vec2(-held_up);  // from a towards b
+                EXPECT_LT((m.normal - expected).norm(), 1e-9);
+                EXPECT_NEAR(deepest(m), -depth, 1e-9 * w + 1e-10);
+                ++checked;
+              }
+  EXPECT_EQ(checked, 972);
 }
 
 TEST(ProudEdges, WithoutSupportsTheSeparatingAxisStands) {

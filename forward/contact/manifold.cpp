@@ -13,6 +13,10 @@ using namespace face_axes;  // the separating axes and flush rules (face_axes.hp
 // parallel: the closest-point formula divides by sin^2 and loses every digit there.
 constexpr double kParallel = 1e-10;
 
+// "Proud edges" (manifold.hpp) acts on overlaps up to this many times h = max(linear_slop,
+// proud_floor) deep: a corner resting up to the slop deep that meets an edge up to h proud.
+constexpr double kProudWindow = 2.0;
+
 // The edge of `inc` facing the direction `normal` (unit) the most, among its solid edges:
 // the incident face. `facing` is the cosine between its outward normal and `normal`;
 // -1 is face to face. A convex polygon always has an edge with facing < 0; only a piece
@@ -216,7 +220,7 @@ Manifold collide_polygons(std::span<const Vec2> a, std::span<const Vec2> b, cons
   // face along which the two blocks were held up in the last step is the contact.
   const double deepest = std::max(axis_a.separation, axis_b.separation);
   const double proud_depth = std::max(linear_slop, settings.proud_floor);
-  if (!flush_face && deepest <= 0.0 && deepest >= -proud_depth) {
+  if (!flush_face && deepest <= 0.0 && deepest >= -kProudWindow * proud_depth) {
     const ProudFace proud_a = proud_face(sa, a_solid, sb, limits_a, 2.0 * proud_depth);
     const ProudFace proud_b = proud_face(sb, b_solid, sa, limits_b, 2.0 * proud_depth);
     const bool from_b = proud_b.support > proud_a.support;

@@ -58,7 +58,8 @@ struct ManifoldSettings {
   bool flip_for_cuts = true;
   // m, >= 0: the flush tolerance eta of "Flush neighbours"; 0 turns the rule off.
   double flush_tolerance = 0.0;
-  // m, >= 0: "Proud edges" reads edges up to max(linear_slop, proud_floor) proud.
+  // m, >= 0: "Proud edges" reads edges up to h = max(linear_slop, proud_floor) proud, in
+  // overlaps up to 2h deep.
   double proud_floor = 0.0;
   // "Flush faces", and "Flush neighbours" judged on the part of a polygon near the line;
   // off, the whole polygon must lie beside a face and the separating axis decides the rest.
@@ -113,10 +114,10 @@ struct ManifoldSettings {
 // meets the next block of it through its face), while both corners lie within eta / 10 of
 // their lines; else the one the polygon lies closer to the line of.
 //
-// Proud edges: when the two polygons overlap by no more than h = max(linear_slop, proud_floor)
-// along every axis (deepest separation in [-h, 0]) and a face overlapped within h of that
-// agrees clearly better (kSupportTie) with the supports of the last step than the separating
-// axis's face, that face is the reference. A block on a row of free blocks presses the ones
+// Proud edges: when the two polygons overlap by no more than 2h, h = max(linear_slop,
+// proud_floor), along every axis (deepest separation in [-2h, 0]) and a face overlapped within
+// h of that agrees clearly better (kSupportTie) with the supports of the last step than the
+// separating axis's face, that face is the reference. A block on a row of free blocks presses the ones
 // under it a little deeper into their own supports than the unloaded block ahead, whose edge
 // then stands proud by micrometres (1.6 um for a 3 m x 1.5 m slider on 0.4 m blocks held by a
 // soft contact). When the slider's corner has just crossed that joint, its front face overlaps
@@ -125,8 +126,17 @@ struct ManifoldSettings {
 // joint for good (docs/theory.md §13). An edge that stands up to linear_slop proud is below
 // the contact's resolution (the substep solver pushes out only overlaps deeper than the slop);
 // proud_floor keeps h at a few micrometres a metre of block where a small displacement limit
-// makes the slop smaller than such an edge. A real step (higher than h) still stops the block.
-// Without supports (the first step) the separating axis decides.
+// makes the slop smaller than such an edge. A real step (higher than h) still stops the block:
+// its top face lies more than h beyond the corner's overlap of its side. The window is 2h, not
+// h, because blocks at rest overlap their supports by up to the slop before the push-out acts,
+// and a corner that rests that deep can meet a proud edge besides. Where four blocks of two
+// layers meet at one corner on a joint leaning through both (model revision 2026-12-03.5), the
+// top layer sinks into the bottom one by its resting overlap, and the two blocks that touch only
+// at that corner overlap by about the slop along the layers' face and half that along the
+// leaning joint's: with the window at h the separating axis took the joint's face as soon as the
+// overlap passed h (1.565e-5 m against h = 1.560e-5 m), pushed the two columns of the slab apart
+// and left it 2.2 % off seed Eq. 4 (tests/test_stacked_slider.cpp). Without supports (the first
+// step) the separating axis decides.
 //
 // Solid edges: a convex piece of a concave block has edges that run inside the block
 // (the cuts of its decomposition). Such an edge is no face: a neighbour can only be
