@@ -234,7 +234,7 @@ TEST(ProudEdges, AStepHigherThanTheSlopStopsTheCorner) {
 // the overlap along the cut is the smaller one; the cut's face pushed the two columns of the slab
 // apart (tests/test_stacked_slider.cpp: 2.2 % off seed Eq. 4 until revision 2026-12-03.5, whose
 // "Proud edges" window stopped at one slop; 144 of these 972 cases took the cut's face then).
-// Swept over slopes, leans either way (the mirror takes the other pair), block sizes, resting
+// Swept over slopes, leans, the scene mirrored (descending to the left), block sizes, resting
 // depths and shears up to the slop, and both orders of the pair.
 TEST(ProudEdges, AJunctionOfFourBlocksOnALeaningCutTouchesThroughTheLayersFace) {
   int checked = 0;
