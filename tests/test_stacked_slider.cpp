@@ -243,10 +243,10 @@ TEST(StackedSliderCoarseSteps, EveryBlockOfASlabFollowsSeedEq4BothWaysDownImplic
 // corner on the cut leaning through both layers, and the bottom front block and the top rear one
 // touch only there. The top layer rests 16 um deep in the bottom one (about the slop), so the
 // top rear block's corner overlaps the bottom front one by that along the layers' face and, as
-// the top layer also shears forward, by a little less along the leaning cut's; "Proud edges" (manifold.hpp), which keeps the face the
-// blocks are held up through, acted only up to h = the slop, and once the overlap passed it
-// (1.565e-5 m against 1.560e-5 m) the separating axis took the cut's face and pushed the two
-// columns apart (9 mm after 0.8 s). The rule now acts up to 2h.
+// the top layer also shears forward, by a little less along the leaning cut's. "Proud edges"
+// (manifold.hpp), which keeps the face the blocks are held up through, acted only up to h = the
+// slop, and once the overlap passed it (1.565e-5 m against 1.560e-5 m) the separating axis took
+// the cut's face and pushed the two columns apart (9 mm after 0.8 s). The rule now acts up to 2h.
 TEST(StackedSliderCoarseSteps, EveryBlockOfASlabFollowsSeedEq4BothWaysDownSubstep) {
   expect_slabs_follow_eq4_at_coarse_steps(Integrator::Substep);
 }

@@ -118,9 +118,9 @@ struct ManifoldSettings {
 // proud_floor), along every axis (deepest separation in [-2h, 0]) and a face overlapped within
 // h of that agrees clearly better (kSupportTie) with the supports of the last step than the
 // separating axis's face, that face is the reference. A block on a row of free blocks presses
-// the ones under it a little deeper into their own supports than the unloaded block ahead, whose edge
-// then stands proud by micrometres (1.6 um for a 3 m x 1.5 m slider on 0.4 m blocks held by a
-// soft contact). When the slider's corner has just crossed that joint, its front face overlaps
+// the ones under it a little deeper into their own supports than the unloaded block ahead,
+// whose edge then stands proud by micrometres (1.6 um for a 3 m x 1.5 m slider on 0.4 m blocks
+// held by a soft contact). When the slider's corner has just crossed that joint, its front face overlaps
 // the joint face by less than the proud edge overlaps its bottom, and the separating axis took
 // the joint face: the two faces, parallel, made a face contact that held the slider at the
 // joint for good (docs/theory.md §13). An edge that stands up to linear_slop proud is below
@@ -134,9 +134,9 @@ struct ManifoldSettings {
 // top layer sinks into the bottom one by its resting overlap (and shears forward on it), and the
 // two blocks that touch only at that corner overlap by about the slop along the layers' face and
 // a little less along the leaning joint's: with the window at h the separating axis took the
-// joint's face as soon as that overlap passed h (1.565e-5 m against h = 1.560e-5 m), pushed the two columns of the slab apart
-// and left it 2.2 % off seed Eq. 4 (tests/test_stacked_slider.cpp). Without supports (the first
-// step) the separating axis decides.
+// joint's face as soon as that overlap passed h (1.565e-5 m against h = 1.560e-5 m), pushed the
+// two columns of the slab apart and left it 2.2 % off seed Eq. 4 (tests/test_stacked_slider.cpp).
+// Without supports (the first step) the separating axis decides.
 //
 // Solid edges: a convex piece of a concave block has edges that run inside the block
 // (the cuts of its decomposition). Such an edge is no face: a neighbour can only be
