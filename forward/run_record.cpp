@@ -54,6 +54,14 @@ double RunRecorder::fit_step(double time, double step, double* landing) const {
   return step;
 }
 
+double RunRecorder::even_step(double time, double step, double* landing) const {
+  const double dt = fit_step(time, step, landing);
+  if (*landing >= 0.0) return dt;
+  const double target = scene_.output_interval > 0.0 ? std::min(next_output_, scene_.duration) : scene_.duration;
+  const double steps = std::ceil((target - time) / step * (1.0 - 1e-6));
+  return (target - time) / steps;
+}
+
 void RunRecorder::record(double time, const BlockSystem& s) {
   for (size_t k = 0; k < s.points.size(); ++k) {
     const MaterialPoint& p = s.points[k];

@@ -27,6 +27,13 @@ class RunRecorder {
   // on multiples of the interval without round-off drift. *landing is then that time, else -1.
   double fit_step(double time, double step, double* landing) const;
 
+  // As fit_step, but the time to the next output (or the end) is cut into equal steps, as
+  // few as steps no longer than `step` allow: no sliver is left before an output time. The
+  // substep solver's: a sliver's substep h sets its impact margins (|g| h, converge_impacts.hpp)
+  // so tight that the sweeps' ordinary residuals counted as impacts (a slab's 0.4 ms steps
+  // with outputs every 10.4 ms: 300 impact groups against 37, 2.4 % off seed Eq. 4).
+  double even_step(double time, double step, double* landing) const;
+
   // After an accepted step that ended at `time`: extremes every step, a history row at
   // output times and at the end, and a progress call about once per second of wall time.
   void record(double time, const BlockSystem& system);

@@ -115,11 +115,12 @@ TEST(Stability, TimeStepWarningMarksTheInaccurateRuns) {
 
 TEST(Stability, SubstepSolverFailsWithADiagnosisNeverWithGarbage) {
   // Where the substep solver fails (docs/verification.md, its stability map): a stack of
-  // five 1 m blocks at rest with 20-50 ms steps. Every run either completes with a finite
-  // result or stops with a message naming the settings to change; at the scene's 1 ms x 4
-  // both scenes hold their verification tolerances (incline 0.5 %, stack 1 mm).
-  const auto map = verification::substep_stability_map({1e-3, 5e-2}, {4});
-  ASSERT_EQ(map.size(), 4u);
+  // five 1 m blocks at rest with 50 ms steps. Every run either completes with a finite
+  // result or stops with a message naming the settings to change; at the scene's 1 ms both
+  // scenes hold their verification tolerances (incline 0.5 %, stack 1 mm).
+  const auto map = verification::substep_stability_map({1e-3, 5e-2}, {2, 4});
+  ASSERT_EQ(map.size(), 8u);
+  const verification::SubstepStabilityPoint* coarse_stack = nullptr;
   for (const auto& p : map) {
     if (p.completed) {
       EXPECT_TRUE(std::isfinite(p.error)) << p.scene << " at " << p.time_step << " s";
@@ -131,9 +132,15 @@ TEST(Stability, SubstepSolverFailsWithADiagnosisNeverWithGarbage) {
       EXPECT_TRUE(p.completed) << p.scene << ": " << p.diagnosis;
       EXPECT_LT(p.error, p.scene == "incline" ? 0.005 : 1e-3) << p.scene;
     }
+    if (p.scene == "stack" && p.time_step == 5e-2 && p.substeps == 2) coarse_stack = &p;
   }
-  // The 50 ms stack is the measured failure: it must be reported as one.
-  EXPECT_FALSE(map[3].completed) << "stack at 50 ms x 4 completed with top movement " << map[3].error << " m";
+  // The measured failure: 50 ms x 2 (25 ms substeps on 1 m blocks). Until model revision
+  // 2026-12-03.6 the stack failed at every step from 20 ms and at 50 ms x 4 too: the step
+  // control cut its steps below the quiet start's and the warm start handed on the larger
+  // steps' impulses unscaled (docs/theory.md §13, the warm start).
+  ASSERT_NE(coarse_stack, nullptr);
+  EXPECT_FALSE(coarse_stack->completed)
+      << "stack at 50 ms x 2 completed with top movement " << coarse_stack->error << " m";
 }
 
 }  // namespace

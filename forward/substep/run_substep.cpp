@@ -206,7 +206,7 @@ void run_substep(const Scene& scene, BlockSystem& s, RunRecorder& recorder, Simu
     mark_near(w);
     step = choose_step(w, step);
     double landing = -1.0;
-    const double dt = recorder.fit_step(time, step, &landing);
+    const double dt = recorder.even_step(time, step, &landing);
     speculative_reach(w, dt);
     if (std::string problem = find_step_contacts(w); !problem.empty()) {
       summary.status = RunStatus::InvalidScene;

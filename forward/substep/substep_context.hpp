@@ -34,6 +34,7 @@ struct SubstepContext {
   double time = 0.0;      // s, the start of the step being advanced
   double load_work = 0.0; // J/m: the ground's inertial load's work in the last step, substep by substep
   ThreadGovernor threads{threads_allowed()};  // how many threads each step uses (thread_governor.hpp)
+  double last_substep = 0.0;  // s, the last step's substep length (0 before the first): rescale_warm_start
   bool settling = false;  // the quiet start: no impact groups (converge_impacts.hpp), nothing strikes
 
   ContactDetection detection;
