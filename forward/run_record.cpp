@@ -44,9 +44,13 @@ void RunRecorder::start(const BlockSystem& s) {
   record(0.0, s);
 }
 
+double RunRecorder::next_row_time() const {
+  return scene_.output_interval > 0.0 ? std::min(next_output_, scene_.duration) : scene_.duration;
+}
+
 double RunRecorder::fit_step(double time, double step, double* landing) const {
   *landing = -1.0;
-  const double target = scene_.output_interval > 0.0 ? std::min(next_output_, scene_.duration) : scene_.duration;
+  const double target = next_row_time();
   if (target - time <= step * (1.0 + 1e-6)) {
     *landing = target;
     return target - time;
@@ -57,9 +61,8 @@ double RunRecorder::fit_step(double time, double step, double* landing) const {
 double RunRecorder::even_step(double time, double step, double* landing) const {
   const double dt = fit_step(time, step, landing);
   if (*landing >= 0.0) return dt;
-  const double target = scene_.output_interval > 0.0 ? std::min(next_output_, scene_.duration) : scene_.duration;
-  const double steps = std::ceil((target - time) / step * (1.0 - 1e-6));
-  return (target - time) / steps;
+  const double to_go = next_row_time() - time;
+  return to_go / std::ceil(to_go / step * (1.0 - 1e-6));
 }
 
 void RunRecorder::record(double time, const BlockSystem& s) {

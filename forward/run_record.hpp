@@ -48,6 +48,8 @@ class RunRecorder {
   bool interrupted(double time, const BlockSystem& system);
 
  private:
+  double next_row_time() const;  // the next output time, or the end
+
   const Scene& scene_;
   const SimulationHooks& hooks_;
   SimulationResult& result_;
