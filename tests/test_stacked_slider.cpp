@@ -225,25 +225,31 @@ TEST_P(StackedSlider, EveryBlockOfASlabFollowsSeedEq4AcrossJoints) {
               sweep.size(), worst, worst_case.c_str());
 }
 
+// Every other slab of the sweep, run each way of `runs`; prints the worst block as `what`.
+void expect_every_other_slab_follows_eq4(Integrator integrator, const std::vector<SlabRun>& runs, const char* what) {
+  const std::vector<Slab> sweep = slab_sweep();
+  double worst = 0.0;
+  int count = 0;
+  std::string worst_case, label;
+  for (size_t k = 0; k < sweep.size(); k += 2)
+    for (const SlabRun& run : runs) {
+      const double error = expect_slab_follows_eq4(sweep[k], integrator, run, &label);
+      if (error > worst) worst = error, worst_case = label;
+      ++count;
+    }
+  std::printf("[measured] %s: %d slabs %s, every block within %.2g of seed Eq. 4 (worst: %s)\n",
+              name_of(integrator).c_str(), count, what, worst, worst_case.c_str());
+}
+
 // Every other slab of the sweep at the Vajont scenes' steps (5 ms x 4 substeps, 10 ms x 3; the
 // implicit solver takes the step alone), descending to the right and, mirrored, to the left: a
 // coarse step lets a corner cross further into a joint in one step, and the mirror puts the
 // blocks' corners and the pairs in the other order.
 void expect_slabs_follow_eq4_at_coarse_steps(Integrator integrator) {
-  const std::vector<Slab> sweep = slab_sweep();
-  double worst = 0.0;
-  int runs = 0;
-  std::string worst_case, label;
-  for (size_t k = 0; k < sweep.size(); k += 2)
-    for (const auto& [step, substeps] : {std::pair{0.005, 4}, {0.01, 3}})
-      for (const bool mirrored : {false, true}) {
-        const double error = expect_slab_follows_eq4(sweep[k], integrator, SlabRun{step, substeps, mirrored}, &label);
-        if (error > worst) worst = error, worst_case = label;
-        ++runs;
-      }
-  std::printf("[measured] %s: %d slabs at 5 and 10 ms steps, both ways down, every block within %.2g of seed Eq. 4 "
-              "(worst: %s)\n",
-              name_of(integrator).c_str(), runs, worst, worst_case.c_str());
+  std::vector<SlabRun> runs;
+  for (const auto& [step, substeps] : {std::pair{0.005, 4}, {0.01, 3}})
+    for (const bool mirrored : {false, true}) runs.push_back({step, substeps, mirrored});
+  expect_every_other_slab_follows_eq4(integrator, runs, "at 5 and 10 ms steps, both ways down");
 }
 
 // The implicit solver: 116 runs, every block within 5.4e-3 (a 2 x 1 m slab of 2 x 2 blocks
@@ -280,20 +286,10 @@ TEST(StackedSliderCoarseSteps, EveryBlockOfASlabFollowsSeedEq4BothWaysDownSubste
 // impulses scaled, 2.5 % with the steps evened alone, 0.5 % with both: rescale_warm_start in
 // forward/substep/solve_contacts.hpp, RunRecorder::even_step in forward/run_record.hpp).
 void expect_slabs_follow_eq4_whatever_cuts_the_steps(Integrator integrator) {
-  const std::vector<Slab> sweep = slab_sweep();
-  double worst = 0.0;
-  int runs = 0;
-  std::string worst_case, label;
-  for (size_t k = 0; k < sweep.size(); k += 2)
-    for (const double output : {0.01, 0.0104, 0.013})
-      for (const bool mirrored : {false, true}) {
-        const SlabRun run{0.01, 3, mirrored, output};
-        const double error = expect_slab_follows_eq4(sweep[k], integrator, run, &label);
-        if (error > worst) worst = error, worst_case = label;
-        ++runs;
-      }
-  std::printf("[measured] %s: %d slabs with steps cut by outputs, every block within %.2g of seed Eq. 4 (worst: %s)\n",
-              name_of(integrator).c_str(), runs, worst, worst_case.c_str());
+  std::vector<SlabRun> runs;
+  for (const double output : {0.01, 0.0104, 0.013})
+    for (const bool mirrored : {false, true}) runs.push_back({0.01, 3, mirrored, output});
+  expect_every_other_slab_follows_eq4(integrator, runs, "with steps cut by outputs");
 }
 
 TEST(StackedSliderStepLengths, EveryBlockOfASlabFollowsSeedEq4WhereverItsStepsAreCutSubstep) {
