@@ -107,8 +107,7 @@ SweepSettings prepare_step(SubstepContext& w, double h) {
   compute_block_masses(s, w.state.masses);
   mask_sleeping(w.sleep, w.state.masses);
   water_accelerations(s, w.scene.gravity.norm(), h * w.options.substeps, w.state);
-  prepare_contacts(w, h, kDeepOverlap);
-  if (w.last_substep > 0.0) rescale_warm_start(w.contacts.manifolds, h / w.last_substep);
+  prepare_contacts(w, h, kDeepOverlap, w.last_substep > 0.0 ? h / w.last_substep : 1.0);
   w.last_substep = h;
   w.state.deep.assign(w.contacts.manifolds.size(), 0);
   w.state.of_block.reset();

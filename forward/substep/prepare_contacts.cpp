@@ -8,6 +8,7 @@
 
 #include "forward/contact/contact_law.hpp"
 #include "forward/mass_matrix.hpp"
+#include "forward/substep/solve_contacts.hpp"
 
 namespace ddafit {
 
@@ -29,7 +30,7 @@ void compute_block_masses(const BlockSystem& s, std::vector<BlockMass>& masses) 
   }
 }
 
-void prepare_contacts(SubstepContext& ctx, double h, double deep_overlap) {
+void prepare_contacts(SubstepContext& ctx, double h, double deep_overlap, double warm_ratio) {
   const BlockSystem& s = ctx.system;
   const std::vector<BlockMass>& masses = ctx.state.masses;
   const double slop = ctx.detection.settings.linear_slop;
@@ -56,6 +57,7 @@ void prepare_contacts(SubstepContext& ctx, double h, double deep_overlap) {
       p.impulse.step_normal = p.impulse.step_tangent = 0.0;
       p.impulse.tension = h * tensile_capacity(face, p);
       p.impulse.cohesion = h * cohesive_strength(face, p);
+      if (warm_ratio != 1.0) rescale_warm_start(p.impulse, warm_ratio);
     }
   }
 }

@@ -18,8 +18,10 @@ void compute_block_masses(const BlockSystem& system, std::vector<BlockMass>& mas
 // cohesion and tension as impulses over one substep h (contact_law.hpp); each manifold the
 // overlap from which its points are corrected in position: `deep_overlap` times the smaller
 // free block's size (the square root of its area), at least the slop (solve_contacts.hpp).
-// On ctx.contacts, with ctx.state.masses and the slop of ctx.detection.
-void prepare_contacts(SubstepContext& ctx, double h, double deep_overlap);
+// Every carried impulse is scaled by `warm_ratio`, this substep's length over the last one's
+// (rescale_warm_start, solve_contacts.hpp; 1 keeps them). On ctx.contacts, with
+// ctx.state.masses and the slop of ctx.detection.
+void prepare_contacts(SubstepContext& ctx, double h, double deep_overlap, double warm_ratio);
 
 constexpr int kSerialColour = 63;
 

@@ -70,21 +70,6 @@ void warm_start(std::vector<ContactManifold>& manifolds, const std::vector<std::
   if (any_struck) std::fill(st.struck_now.begin(), st.struck_now.end(), 0);
 }
 
-void rescale_warm_start(std::vector<ContactManifold>& manifolds, double ratio) {
-  if (ratio == 1.0) return;
-  const long n = static_cast<long>(manifolds.size());
-#pragma omp parallel for schedule(static) if (n >= kParallelMinimum)
-  for (long k = 0; k < n; ++k) {
-    ContactManifold& m = manifolds[k];
-    for (int q = 0; q < m.point_count; ++q) {
-      ImpulseState& i = m.points[q].impulse;
-      i.normal *= ratio;
-      i.tangent *= ratio;
-      i.carried *= ratio;  // what the last warm start applied: the blow test compares it with `normal`
-    }
-  }
-}
-
 namespace {
 
 // One point of a pass: the normal impulse with the push-out (or none in the relax sweep),
