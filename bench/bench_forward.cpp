@@ -2,6 +2,9 @@
 // Results and the machine are recorded in docs/performance.md.
 #include <benchmark/benchmark.h>
 
+#include <cstdlib>
+
+#include "forward/contact/detect_contacts.hpp"
 #include "forward/io/scene_reader.hpp"
 #include "forward/simulation.hpp"
 #include "verify/cases.hpp"
@@ -70,5 +73,36 @@ BENCHMARK(BM_BrickWallScaling)
     ->ArgsProduct({{10, 20, 40}, {0, 1}})
     ->ArgNames({"side", "substep"})
     ->Unit(benchmark::kMillisecond);
+
+// The contact stage alone (broad and narrow phase, detect_contacts.hpp) on Vajont section VII
+// as meshed at t = 0 (3136 blocks, some 20 000 manifolds): the stage the substep solver runs
+// once per step, over a mass at rest, so the narrow phase's flush and proud-edge rules all
+// run. Settings as run_substep.cpp sets them (slop 1e-3 of the largest move per step, the
+// margin search_distance_factor times it). Repeat it (--benchmark_repetitions) and read the
+// minimum: a change of a few percent in the narrow phase is lost in one run's noise. Or count
+// its instructions, which a shared machine does not disturb: CGAL's meshing does not run under
+// valgrind, so cut the blocks first and name the cut scene in DDAFIT_BENCH_SCENE:
+//   ddafit mesh cases/vajont/degraded.yaml --out /tmp/vii
+//   DDAFIT_BENCH_SCENE=/tmp/vii/scene.yaml OMP_NUM_THREADS=1 valgrind --tool=callgrind \
+//     build/bench/ddafit_bench --benchmark_filter=FindContacts --benchmark_min_time=0.001
+void BM_FindContactsSectionVII(benchmark::State& state) {
+  const char* cut = std::getenv("DDAFIT_BENCH_SCENE");
+  const Scene scene = io::read_scene(cut ? std::string(cut) : std::string(DDAFIT_CASES_DIR) + "/vajont/degraded.yaml", {});
+  const BlockSystem system = build_block_system(scene);
+  ContactDetection detection;
+  if (const std::string bad = prepare_detection(system, detection); !bad.empty()) state.SkipWithError(bad.c_str());
+  const double max_move = scene.options.max_displacement_ratio * system.half_model_size;
+  detection.settings.margin = scene.options.search_distance_factor * max_move;
+  detection.settings.linear_slop = 1e-3 * max_move;
+  detection.settings.gravity = scene.gravity;
+  ContactSet contacts;
+  detect_contacts(system, detection, contacts);  // the first call forms bonds; time the steady ones
+  for (auto _ : state) {
+    const std::string problem = detect_contacts(system, detection, contacts);
+    if (!problem.empty()) state.SkipWithError(problem.c_str());
+  }
+  state.counters["manifolds"] = static_cast<double>(contacts.manifolds.size());
+}
+BENCHMARK(BM_FindContactsSectionVII)->Unit(benchmark::kMillisecond);
 
 }  // namespace

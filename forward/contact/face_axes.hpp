@@ -5,8 +5,10 @@
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <limits>
 #include <span>
+#include <vector>
 
 #include "forward/kinematics.hpp"
 #include "forward/scene.hpp"
@@ -19,14 +21,33 @@ inline constexpr double kInfinity = std::numeric_limits<double>::infinity();
 inline Vec2 outward(const Vec2& edge) { return Vec2(edge.y(), -edge.x()); }
 
 // A polygon seen from a's first vertex: the polygons are metres across but their
-// coordinates reach ~3000 m, so differences are taken once, near the origin.
+// coordinates reach ~3000 m, so differences are taken once, near the origin. `v` holds the
+// n vertices less the origin twice over (make_shape), so a vertex i in [0, 2n) is read
+// without a wrap or a subtraction: the narrow phase reads each vertex many times per pair
+// (every edge of the other polygon), and the wrap by % was a tenth of it.
 struct Shape {
   std::span<const Vec2> v;
   Vec2 origin;
   int n = 0;
-  // i in [0, 2n): a wrap by subtraction, not %, which was a tenth of the narrow phase.
-  Vec2 at(int i) const { return v[static_cast<size_t>(i < n ? i : i - n)] - origin; }
+  const Vec2& at(int i) const { return v[static_cast<size_t>(i)]; }
 };
+
+// The storage of a Shape's doubled vertices: on the stack for up to kInline vertices.
+struct ShapeStore {
+  static constexpr size_t kInline = 16;
+  std::array<Vec2, 2 * kInline> inline_vertices;
+  std::vector<Vec2> more;
+};
+inline Shape make_shape(std::span<const Vec2> vertices, const Vec2& origin, ShapeStore& store) {
+  const size_t n = vertices.size();
+  Vec2* out = store.inline_vertices.data();
+  if (n > ShapeStore::kInline) {
+    store.more.resize(2 * n);
+    out = store.more.data();
+  }
+  for (size_t i = 0; i < n; ++i) out[i] = out[i + n] = vertices[i] - origin;
+  return Shape{std::span<const Vec2>(out, 2 * n), origin, static_cast<int>(n)};
+}
 
 struct Axis {
   int edge = -1;                   // the best axis that may be a reference face (long enough)

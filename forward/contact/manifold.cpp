@@ -150,7 +150,8 @@ Manifold collide_polygons(std::span<const Vec2> a, std::span<const Vec2> b, cons
   const double max_distance = settings.max_distance, linear_slop = settings.linear_slop;
   if (a.size() < 3 || b.size() < 3) return m;
   const Vec2 origin = a[0];
-  const Shape sa{a, origin, static_cast<int>(a.size())}, sb{b, origin, static_cast<int>(b.size())};
+  ShapeStore store_a, store_b;
+  const Shape sa = make_shape(a, origin, store_a), sb = make_shape(b, origin, store_b);
   double extent = 0.0;
   for (int k = 0; k < sa.n; ++k) extent = std::max(extent, sa.at(k).cwiseAbs().maxCoeff());
   for (int k = 0; k < sb.n; ++k) extent = std::max(extent, sb.at(k).cwiseAbs().maxCoeff());
