@@ -90,6 +90,19 @@ struct Crossing {
   return s;
 }
 
+// A fixed plane `plane_length` long down `slope` (group "plane", 1 m thick) and on it a row of
+// `row_blocks` free blocks `row_length` long and `row_height` thick from its top end (group
+// "row"): the free row that test_free_row.cpp and test_stacked_slider.cpp drive sliders over.
+[[maybe_unused]] void add_plane_and_free_row(Scene& s, const Slope& slope, double plane_length, double row_length,
+                                             double row_height, int row_blocks) {
+  s.blocks.push_back(block("plane", {slope.at(0, 0), slope.at(0, -1), slope.at(plane_length, -1),
+                                     slope.at(plane_length, 0)}, true, 0, "plane"));
+  for (int j = 0; j < row_blocks; ++j)
+    s.blocks.push_back(block("row_" + std::to_string(j),
+                             box(slope.at(j * row_length, 0), slope.along, slope.up, row_length, row_height), false,
+                             0, "row"));
+}
+
 // Seed Eq. 4's acceleration down a slope of `slope` degrees at friction `friction` degrees, m/s^2.
 [[maybe_unused]] double eq4_acceleration(double slope, double friction) {
   return 9.81 * (std::sin(slope * kDegree) - std::cos(slope * kDegree) * std::tan(friction * kDegree));

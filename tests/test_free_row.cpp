@@ -40,12 +40,7 @@ FreeRowRun run_free_row(const FreeRow& f, Integrator integrator) {
   s.default_interface = slides;
   const Slope slope(f.slope);
   const double row_height = 0.3;
-  s.blocks.push_back(block("plane", {slope.at(0, 0), slope.at(0, -1), slope.at(f.plane_length, -1),
-                                     slope.at(f.plane_length, 0)}, true, 0, "plane"));
-  for (int j = 0; j < f.row_blocks; ++j)
-    s.blocks.push_back(block("row_" + std::to_string(j),
-                             box(slope.at(j * f.row_length, 0), slope.along, slope.up, f.row_length, row_height), false,
-                             0, "row"));
+  add_plane_and_free_row(s, slope, f.plane_length, f.row_length, row_height, f.row_blocks);
   s.blocks.push_back(block("slider", box(slope.at(f.rear, row_height), slope.along, slope.up, f.length, f.height),
                            false, 0, "slider"));
   s.measure.push_back({"centre", slope.at(f.rear + 0.5 * f.length, row_height + 0.5 * f.height)});

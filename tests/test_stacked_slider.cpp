@@ -355,12 +355,9 @@ TEST_P(StackedSlider, ATwoLayerSliderCrossesARowOfFreeBlocks) {
         s.default_interface = slides;
         const Slope slope(slope_angle);
         const double row_height = 0.3, plane = 14.0, rear = 0.1;
-        s.blocks.push_back(
-            block("plane", {slope.at(0, 0), slope.at(0, -1), slope.at(plane, -1), slope.at(plane, 0)}, true, 0, "plane"));
-        for (int j = 0; j * row_length < plane - 1e-9; ++j)
-          s.blocks.push_back(block("row_" + std::to_string(j),
-                                   box(slope.at(j * row_length, 0), slope.along, slope.up, row_length, row_height),
-                                   false, 0, "row"));
+        int row_blocks = 0;
+        while (row_blocks * row_length < plane - 1e-9) ++row_blocks;
+        add_plane_and_free_row(s, slope, plane, row_length, row_height, row_blocks);
         const double h0 = bottom * height;
         s.blocks.push_back(
             block("bottom", box(slope.at(rear, row_height), slope.along, slope.up, length, h0), false, 0, "slider"));
