@@ -44,6 +44,7 @@ struct Case {
   double friction = 30.0;  // deg, on every interface
   bool mirrored = false;   // run as the scene's mirror image (forward/mirror.hpp), read back unmirrored
   bool reversed = false;   // the scene's blocks listed in the reverse order (the measure points are places)
+  double max_displacement_ratio = 0.0;  // control.max_displacement_ratio; 0: the default
 };
 
 std::string label(const Case& c) {
@@ -52,7 +53,9 @@ std::string label(const Case& c) {
   std::snprintf(text, sizeof text, "%s: %g m block at %g m/s %s %d blocks %g m thick, friction %g deg, %g ms x %d",
                 c.integrator == Integrator::Implicit ? "implicit" : "substep", c.size, c.speed, shape, c.count,
                 c.ratio * c.size, c.friction, c.step * 1000, c.substeps);
-  return std::string(text) + (c.mirrored ? ", mirrored" : "") + (c.reversed ? ", blocks listed in reverse" : "");
+  std::string out = std::string(text) + (c.mirrored ? ", mirrored" : "") + (c.reversed ? ", blocks listed in reverse" : "");
+  if (c.max_displacement_ratio > 0.0) out += ", max_displacement_ratio " + std::to_string(c.max_displacement_ratio);
+  return out;
 }
 
 // The struck blocks rest on a fixed floor (a stack: one on another; a row: side by side, the
@@ -65,6 +68,7 @@ Scene scene_of(const Case& c) {
   Scene s = verification::rock_scene(kDensity, c.friction, 0.5, c.step, c.step);
   s.options.integrator = c.integrator;
   s.options.substeps = c.substeps;
+  if (c.max_displacement_ratio > 0.0) s.options.max_displacement_ratio = c.max_displacement_ratio;
   const double w = c.size, t = c.ratio * c.size;
   s.blocks.push_back(box("floor", {0.0, -0.5 * w}, 40.0 * w + 4.0 * c.count * t, w, true));
   BlockInput striker;
@@ -158,7 +162,7 @@ SimulationResult run_case(const Case& c) {
 
 Sweep sweep(Shape shape, Integrator integrator, std::initializer_list<double> speeds,
             std::initializer_list<int> counts, std::initializer_list<double> frictions, bool mirrored = false,
-            bool reversed = false) {
+            bool reversed = false, double max_displacement_ratio = 0.0) {
   Sweep out;
   for (const double size : {1.0, 4.0})
     for (const double speed : speeds)
@@ -170,6 +174,7 @@ Sweep sweep(Shape shape, Integrator integrator, std::initializer_list<double> sp
               c.friction = friction;
               c.mirrored = mirrored;
               c.reversed = reversed;
+              c.max_displacement_ratio = max_displacement_ratio;
               const SimulationResult r = run_case(c);
               const std::string text = label(c);
               EXPECT_EQ(r.summary.status, RunStatus::Completed) << text << ": " << r.summary.message;
@@ -201,8 +206,8 @@ Sweep sweep(Shape shape, Integrator integrator, std::initializer_list<double> sp
 // Free rows: the floor took no more momentum than its friction gives (kMomentumBound).
 void expect_inelastic(Shape shape, Integrator integrator, std::initializer_list<double> speeds, int runs,
                       std::initializer_list<int> counts = {3, 6, 10}, std::initializer_list<double> frictions = {30.0},
-                      bool mirrored = false, bool reversed = false) {
-  const Sweep s = sweep(shape, integrator, speeds, counts, frictions, mirrored, reversed);
+                      bool mirrored = false, bool reversed = false, double max_displacement_ratio = 0.0) {
+  const Sweep s = sweep(shape, integrator, speeds, counts, frictions, mirrored, reversed, max_displacement_ratio);
   EXPECT_EQ(s.runs, runs);
   EXPECT_LE(s.worst_excess, 0.0) << s.worst_case;
   EXPECT_LE(s.worst_overlap, kOverlapBound);
