@@ -83,8 +83,9 @@ BENCHMARK(BM_BrickWallScaling)
 // its instructions, which a shared machine does not disturb: CGAL's meshing does not run under
 // valgrind, so cut the blocks first and name the cut scene in DDAFIT_BENCH_SCENE:
 //   ddafit mesh cases/vajont/degraded.yaml --out /tmp/vii
-//   DDAFIT_BENCH_SCENE=/tmp/vii/scene.yaml OMP_NUM_THREADS=1 valgrind --tool=callgrind \
+//   DDAFIT_BENCH_SCENE=/tmp/vii/scene.yaml OMP_NUM_THREADS=1 valgrind --tool=callgrind
 //     build/bench/ddafit_bench --benchmark_filter=FindContacts --benchmark_min_time=0.001
+// (one command, broken here).
 void BM_FindContactsSectionVII(benchmark::State& state) {
   const char* cut = std::getenv("DDAFIT_BENCH_SCENE");
   const Scene scene = io::read_scene(cut ? std::string(cut) : std::string(DDAFIT_CASES_DIR) + "/vajont/degraded.yaml", {});
