@@ -7,6 +7,6 @@
 
 namespace ddafit {
 
-inline constexpr const char* kModelRevision = "2026-12-03.6";
+inline constexpr const char* kModelRevision = "2026-12-04.1";
 
 }  // namespace ddafit

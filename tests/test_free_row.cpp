@@ -2,10 +2,14 @@
 // joints are flush only as far as its blocks sit still, and a heavy slider presses the blocks
 // under it deeper into the plane than the unloaded one ahead, whose edge then stands proud
 // (forward/contact/manifold.hpp, "Proud edges"). Both solvers, slopes 15-35 deg, rows of
-// 0.15-1.0 m blocks, light and heavy sliders, from rest; the tolerances of
+// 0.15-1.0 m blocks, light and heavy sliders, from rest (and, at coarse steps, arriving at
+// 10-30 m/s); the tolerances of
 // test_joint_crossing.cpp (1 % of seed Eq. 4 where the slider has moved 1 cm; overlaps under
 // 1 % of the smaller block), and the row in place within 1 mm.
 #include <cmath>
+#include <cstdio>
+#include <initializer_list>
+#include <tuple>
 #include <string>
 #include <vector>
 
@@ -17,6 +21,8 @@ namespace {
 
 class FreeRowSolver : public ::testing::TestWithParam<Integrator> {};
 
+constexpr double kRowMovement = 1e-3;  // m: the row's elastic settling is micrometres
+
 // A slider on a row of free blocks 0.3 m thick that rest on a fixed plane: the row held to the
 // plane (and block to block) at `hold`, the slider on the row at `slide` (degrees). Returns the run
 // and how far any block of the row moved.
@@ -25,6 +31,9 @@ struct FreeRow {
   double row_length = 0.4, plane_length = 14.0;
   int row_blocks = 30;
   double length = 1.2, height = 0.6, rear = 0.0;  // the slider, its rear along the slope
+  double speed = 0.0;                             // the slider's, down the slope at t = 0 (m/s)
+  double step = kStep;                            // time.step (s)
+  int substeps = SimulationOptions{}.substeps;     // time.substeps (the substep solver)
   double max_displacement_ratio = SimulationOptions{}.max_displacement_ratio;
 };
 struct FreeRowRun {
@@ -32,8 +41,9 @@ struct FreeRowRun {
   double row_moved = 0.0;  // m
 };
 FreeRowRun run_free_row(const FreeRow& f, Integrator integrator) {
-  Scene s = base_scene(kDuration, kStep, kOutput, integrator);
+  Scene s = base_scene(kDuration, f.step, kOutput, integrator);
   s.options.max_displacement_ratio = f.max_displacement_ratio;
+  s.options.substeps = f.substeps;
   const int holds = add_interface(s, "holds", f.hold);
   const int slides = add_interface(s, "slides", f.slide);
   s.contact_rules = {{"plane", "row", holds}, {"row", "row", holds}, {"slider", "row", slides}};
@@ -41,8 +51,10 @@ FreeRowRun run_free_row(const FreeRow& f, Integrator integrator) {
   const Slope slope(f.slope);
   const double row_height = 0.3;
   add_plane_and_free_row(s, slope, f.plane_length, f.row_length, row_height, f.row_blocks);
-  s.blocks.push_back(block("slider", box(slope.at(f.rear, row_height), slope.along, slope.up, f.length, f.height),
-                           false, 0, "slider"));
+  BlockInput slider = block("slider", box(slope.at(f.rear, row_height), slope.along, slope.up, f.length, f.height),
+                            false, 0, "slider");
+  slider.velocity = f.speed * slope.along;
+  s.blocks.push_back(slider);
   s.measure.push_back({"centre", slope.at(f.rear + 0.5 * f.length, row_height + 0.5 * f.height)});
   FreeRowRun run;
   std::vector<Vec2> start;
@@ -59,13 +71,13 @@ FreeRowRun run_free_row(const FreeRow& f, Integrator integrator) {
 
 // The run of a free row against seed Eq. 4 (slope and slide friction) and the row in place.
 void expect_row_crossed(const FreeRowRun& run, const FreeRow& f, const std::string& label) {
-  constexpr double kRowMovement = 1e-3;  // m: the row's elastic settling is micrometres
   const SimulationResult& r = run.result;
   ASSERT_EQ(r.summary.status, RunStatus::Completed) << label << ": " << r.summary.message;
   EXPECT_LT(run.row_moved, kRowMovement) << label;
   Crossing c;
   c.slope = f.slope;
   c.friction = f.slide;
+  c.speed = f.speed;
   double when = 0.0;
   const double error = displacement_error(r, c, &when);
   EXPECT_LT(error, kDisplacementTolerance) << label << ": worst at t = " << when << " s";
@@ -150,6 +162,77 @@ TEST_P(FreeRowSolver, AHeavySliderFromRestCrossesAFreeRowOnSteeperSlopes) {
 TEST_P(FreeRowSolver, AHeavySliderCrossesAFreeRowUnderASmallDisplacementLimit) {
   expect_heavy_slider_crosses_free_row(GetParam(), {1.0}, 15.0, 8.0, 2e-4);
   expect_heavy_slider_crosses_free_row(GetParam(), {1.0}, 15.0, 8.0, 2e-4, 13.36, 12);
+}
+
+
+// Sliders on a free row at the coarse steps of a landslide run (10 ms x 3, Vajont's, 10 ms x 4
+// and 5 ms x 4; the tests above run 1 ms), substep solver: a 1.2 x 0.6 and a 3 x 1.5 m slider
+// over rows of 0.4 and 1.0 m blocks, at 15 deg (friction 8, the row held at 60) and 28 deg (18,
+// held at 45), from rest or arriving at `speed`; a plane long enough for 1.5 s. Returns the
+// labels of the runs off seed Eq. 4 by more than 1 % or with the row moved more than 1 mm.
+std::vector<std::string> free_rows_at_coarse_steps(std::initializer_list<double> speeds,
+                                                   std::initializer_list<std::tuple<double, double, double>> slopes,
+                                                   int* runs) {
+  std::vector<std::string> off;
+  for (const auto& [step, substeps] : {std::pair{0.01, 3}, {0.01, 4}, {0.005, 4}})
+    for (const double speed : speeds)
+      for (const auto& [slope, slide, hold] : slopes)
+        for (const auto& [length, height] : {std::pair{1.2, 0.6}, std::pair{3.0, 1.5}})
+          for (const double row_length : {0.4, 1.0}) {
+            FreeRow f;
+            f.slope = slope, f.slide = slide, f.hold = hold, f.speed = speed;
+            f.step = step, f.substeps = substeps;
+            f.length = length, f.height = height, f.row_length = row_length;
+            f.plane_length = speed * kDuration + 10.0 + 2.0 * length;
+            f.row_blocks = static_cast<int>(std::ceil((f.plane_length - 1.0) / row_length));
+            int k = 1;
+            while (k * row_length - 0.02 - f.length < 0.1) ++k;
+            f.rear = k * row_length - 0.02 - f.length;  // the front 2 cm before a joint
+            const FreeRowRun run = run_free_row(f, Integrator::Substep);
+            char label[200];
+            std::snprintf(label, sizeof label, "%g m/s, %g deg (friction %g), slider %g x %g m, row of %g m, %g ms x %d",
+                          speed, slope, slide, length, height, row_length, step * 1000, substeps);
+            ++*runs;
+            if (run.result.summary.status != RunStatus::Completed) {
+              off.push_back(std::string(label) + ": " + run.result.summary.message);
+              continue;
+            }
+            Crossing c;
+            c.slope = f.slope, c.friction = f.slide, c.speed = f.speed;
+            double when = 0.0;
+            const double error = displacement_error(run.result, c, &when);
+            if (error >= kDisplacementTolerance || run.row_moved >= kRowMovement)
+              off.push_back(std::string(label) + ": " + std::to_string(error) + " off Eq. 4, row moved " +
+                            std::to_string(run.row_moved) + " m");
+          }
+  return off;
+}
+
+// From rest at 15 deg, the heavy slider's scene of AHeavySliderFromRestCrossesARowOfFreeBlocks at
+// coarse steps (12 runs). Until model revision 2026-12-04.1 the 3 x 1.5 m slider on 0.4 m blocks
+// hooked at the first joint at 10 ms x 4 and x 3 (0 % of Eq. 4's travel): a substep of 2.5-3.3 ms
+// lets the loaded row blocks rest 61-109 um deeper than the unloaded one ahead, more than the
+// slop of this 16 m scene (40 um) that bounded "Proud edges"; the bound now includes the
+// substep's sag (collide.hpp, kSagRatio). Worst since: 2.1e-4 of Eq. 4.
+TEST(JointCrossingFreeRow, AHeavySliderFromRestCrossesAFreeRowAtCoarseStepsSubstep) {
+  int runs = 0;
+  const std::vector<std::string> off = free_rows_at_coarse_steps({0.0}, {{15.0, 8.0, 60.0}}, &runs);
+  EXPECT_EQ(runs, 12);
+  for (const std::string& o : off) ADD_FAILURE() << o;
+}
+
+// KNOWN DEFECT (found 2026-12-04): the class above from rest and arriving at 10 and 30 m/s, and at
+// 28 deg too (72 runs): 8 fail at revision 2026-12-04.1 (16 before it). The 3 x 1.5 m slider
+// arriving at 10-30 m/s drags the row of 0.4 m blocks along (16-25 m, 61-83 % off Eq. 4) at
+// 10 ms x 3 and x 4, and a row of 1.0 m blocks 4 m at 5 ms x 4 (30 m/s, 20 % off); from rest at
+// 28 deg at 10 ms x 4 the row creeps 1.7 mm. At 1 ms every such run passes, and the implicit
+// solver passes them at 10 ms. docs/theory.md §13, "Limits of the substep solver".
+TEST(JointCrossingFreeRow, DISABLED_SlidersArrivingFastCrossAFreeRowAtCoarseStepsSubstep) {
+  int runs = 0;
+  const std::vector<std::string> off =
+      free_rows_at_coarse_steps({0.0, 10.0, 30.0}, {{15.0, 8.0, 60.0}, {28.0, 18.0, 45.0}}, &runs);
+  EXPECT_EQ(runs, 72);
+  for (const std::string& o : off) ADD_FAILURE() << o;
 }
 
 INSTANTIATE_TEST_SUITE_P(JointCrossing, FreeRowSolver, ::testing::Values(Integrator::Implicit, Integrator::Substep),

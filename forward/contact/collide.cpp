@@ -259,7 +259,7 @@ std::string collide(const BlockSystem& s, ContactDetection& detection, const std
     // there let Vajont section V (degraded) overlap by 3.9 % of a block.
     ms.flush_faces = ms.flip_for_cuts;
     ms.flush_tolerance = settings.flush_ratio * size;
-    ms.proud_floor = size < 1e299 ? kProudRatio * size : 0.0;
+    ms.proud_floor = std::max(size < 1e299 ? kProudRatio * size : 0.0, settings.sag);
     ms.support_a = support[block_a];
     ms.support_b = support[block_b];
     const int first_a = shapes.pieces[a].first, first_b = shapes.pieces[b].first;

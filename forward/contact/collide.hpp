@@ -31,6 +31,15 @@ inline constexpr double kFlushRatio = 0.02;
 // for every block under 50 m: sections I and II and section VII's first 10 s are the same to the
 // byte with and without this floor (revision 2026-12-01.2).
 inline constexpr double kProudRatio = 5e-6;
+// The substep solver's sag (CollideSettings::sag) in |g| h^2: gravity adds |g| h to a block's
+// speed in each substep, and the sweeps and push-out that take it back leave a loaded block up
+// to about that times h deeper in its supports than an unloaded neighbour. A 3 m x 1.5 m slider
+// from rest on a row of free 0.4 m blocks (15 deg, friction 8 deg) at 10 ms x 4 or x 3 hooked
+// on the first joint (a slop of 40 um against a sag of 61-109 um; tests/test_free_row.cpp);
+// at 1 this frees it from rest, at 2 also when it arrives at 10 m/s at 10 ms x 3. On Vajont
+// (10 ms x 3, slop 0.25 mm) 2 |g| h^2 = 0.22 mm stays under the slop: its runs are unchanged
+// (model revision 2026-12-04.1).
+inline constexpr double kSagRatio = 2.0;
 
 struct CollideSettings {
   double margin = 0.0;       // m: points are kept while their gap is below this (speculative)
@@ -43,6 +52,10 @@ struct CollideSettings {
   double flush_ratio = kFlushRatio;
   // Down: of two free blocks, the upper one overrides (seed Eq. 2: its length sets d_c).
   Vec2 gravity = Vec2(0.0, -9.81);
+  // m, >= 0: how deep a block can rest in its supports beyond the slop because the solver steps
+  // (the substep solver: kSagRatio |g| h^2, h its longest substep; 0 for the implicit solver).
+  // "Proud edges" (manifold.hpp) reads edges up to max(linear_slop, proud floor, sag) proud.
+  double sag = 0.0;
 };
 
 // Replaces `contacts` (the last step's, manifolds sorted by piece pair, histories by key)

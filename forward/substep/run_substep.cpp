@@ -178,6 +178,8 @@ void run_substep(const Scene& scene, BlockSystem& s, RunRecorder& recorder, Simu
   settings.linear_slop = kSlopRatio * max_move;
   settings.first_step = true;
   settings.gravity = scene.gravity;
+  const double longest_substep = scene.max_step / o.substeps;
+  settings.sag = kSagRatio * scene.gravity.norm() * longest_substep * longest_substep;
   w.correction = {kCorrectionPasses, kCorrectionExtraPasses, kCorrectionFraction, kCorrectionShare * max_move};
   report.substeps = o.substeps;
   double time = 0.0;
