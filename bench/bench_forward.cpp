@@ -88,7 +88,8 @@ BENCHMARK(BM_BrickWallScaling)
 // (one command, broken here).
 void BM_FindContactsSectionVII(benchmark::State& state) {
   const char* cut = std::getenv("DDAFIT_BENCH_SCENE");
-  const Scene scene = io::read_scene(cut ? std::string(cut) : std::string(DDAFIT_CASES_DIR) + "/vajont/degraded.yaml", {});
+  const std::string path = cut ? std::string(cut) : std::string(DDAFIT_CASES_DIR) + "/vajont/degraded.yaml";
+  const Scene scene = io::read_scene(path, {});
   const BlockSystem system = build_block_system(scene);
   ContactDetection detection;
   if (const std::string bad = prepare_detection(system, detection); !bad.empty()) state.SkipWithError(bad.c_str());

@@ -53,7 +53,8 @@ std::string label(const Case& c) {
   std::snprintf(text, sizeof text, "%s: %g m block at %g m/s %s %d blocks %g m thick, friction %g deg, %g ms x %d",
                 c.integrator == Integrator::Implicit ? "implicit" : "substep", c.size, c.speed, shape, c.count,
                 c.ratio * c.size, c.friction, c.step * 1000, c.substeps);
-  std::string out = std::string(text) + (c.mirrored ? ", mirrored" : "") + (c.reversed ? ", blocks listed in reverse" : "");
+  std::string out = std::string(text) + (c.mirrored ? ", mirrored" : "");
+  if (c.reversed) out += ", blocks listed in reverse";
   if (c.max_displacement_ratio > 0.0) out += ", max_displacement_ratio " + std::to_string(c.max_displacement_ratio);
   return out;
 }

@@ -190,8 +190,9 @@ std::vector<std::string> free_rows_at_coarse_steps(std::initializer_list<double>
             f.rear = k * row_length - 0.02 - f.length;  // the front 2 cm before a joint
             const FreeRowRun run = run_free_row(f, Integrator::Substep);
             char label[200];
-            std::snprintf(label, sizeof label, "%g m/s, %g deg (friction %g), slider %g x %g m, row of %g m, %g ms x %d",
-                          speed, slope, slide, length, height, row_length, step * 1000, substeps);
+            std::snprintf(label, sizeof label,
+                          "%g m/s, %g deg (friction %g), slider %g x %g m, row of %g m, %g ms x %d", speed, slope,
+                          slide, length, height, row_length, step * 1000, substeps);
             ++*runs;
             if (run.result.summary.status != RunStatus::Completed) {
               off.push_back(std::string(label) + ": " + run.result.summary.message);
