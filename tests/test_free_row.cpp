@@ -212,9 +212,11 @@ std::vector<std::string> free_rows_at_coarse_steps(std::initializer_list<double>
 // From rest at 15 deg, the heavy slider's scene of AHeavySliderFromRestCrossesARowOfFreeBlocks at
 // coarse steps (12 runs). Until model revision 2026-12-04.1 the 3 x 1.5 m slider on 0.4 m blocks
 // hooked at the first joint at 10 ms x 4 and x 3 (0 % of Eq. 4's travel): a substep of 2.5-3.3 ms
-// lets the loaded row blocks rest 61-109 um deeper than the unloaded one ahead, more than the
-// slop of this 16 m scene (40 um) that bounded "Proud edges"; the bound now includes the
-// substep's sag (collide.hpp, kSagRatio). Worst since: 2.1e-4 of Eq. 4.
+// lets the loaded row blocks rest deeper than the unloaded one ahead by about |g| h^2 (61-109 um;
+// traced at 10 ms x 4: the slider 76 um into the blocks under its front), more than the slop of
+// this 16 m scene (40 um) that bounded "Proud edges", and the quiet start slides the slider into
+// that edge before t = 0 (below). The bound now includes the substep's sag (collide.hpp,
+// kSagRatio). Worst since: 2.1e-4 of Eq. 4.
 TEST(JointCrossingFreeRow, AHeavySliderFromRestCrossesAFreeRowAtCoarseStepsSubstep) {
   int runs = 0;
   const std::vector<std::string> off = free_rows_at_coarse_steps({0.0}, {{15.0, 8.0, 60.0}}, &runs);
