@@ -255,7 +255,7 @@ TEST(JointCrossingFreeRow, DISABLED_SlidersArrivingFastCrossAFreeRowAtCoarseStep
 // off seed Eq. 4 or move the row more than 1 mm, most of them the 3 m slider on 0.1 m cubes at
 // 35 deg: at 6 m/s 48 % off with the row driven 19.6 m (friction 33 deg, descending to the left);
 // at 3 m/s 10-11 % off and 2-7 m (at 25 deg too); at 1 m/s the row creeps 1-34 cm. On 0.4 m cubes
-// 3 runs, worst 40 % and 1.3 m (6 m/s, friction 33 deg); the 1 m slider 4 runs, worst 43 %.
+// 4 runs, worst 40 % and 1.3 m (6 m/s, friction 33 deg); the 1 m slider 5 runs, worst 43 %.
 // Traced on a probe scene (a print of the row's contacts, not kept): at 0.11 s of a 1 x 0.6 m
 // slider at 3 m/s (35 deg, friction 27) the row-row contacts ahead of the slider carry compression
 // for 15 blocks (up to 290 N/m where an unloaded cube's base holds about 200 N/m), the cubes ahead
