@@ -181,5 +181,25 @@ constexpr double kDisplacementTolerance = 0.01;
   return e.worst;
 }
 
+// One crossing at `step` (time.step), on the slope as built or on its mirror image descending
+// to the left (forward/mirror.hpp): the run completes and the slider keeps within 1 % of seed
+// Eq. 4 where it has moved 1 cm. Returns the error; `label` names the run.
+[[maybe_unused]] double expect_crossing_at_step(const Crossing& c, Integrator integrator, double step,
+                                                bool mirrored, std::string& label) {
+  Scene scene = crossing_scene(c, integrator);
+  scene.max_step = step;
+  if (mirrored) scene = mirrored_scene(scene);
+  SimulationResult r = simulate(scene);
+  if (mirrored) unmirror_history(r.history);
+  label = describe(c, integrator) + ", step " + std::to_string(step) + " s" +
+          (mirrored ? ", descending to the left" : "");
+  EXPECT_EQ(r.summary.status, RunStatus::Completed) << label << ": " << r.summary.message;
+  if (r.summary.status != RunStatus::Completed) return 1.0;
+  double when = 0.0;
+  const double error = displacement_error(r, c, &when);
+  EXPECT_LT(error, kDisplacementTolerance) << label << ": worst at t = " << when << " s";
+  return error;
+}
+
 }  // namespace
 }  // namespace ddafit

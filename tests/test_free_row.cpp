@@ -3,7 +3,7 @@
 // under it deeper into the plane than the unloaded one ahead, whose edge then stands proud
 // (forward/contact/manifold.hpp, "Proud edges"). Both solvers, slopes 15-35 deg, rows of
 // 0.15-1.0 m blocks, light and heavy sliders, from rest (and, at coarse steps, arriving at
-// 10-30 m/s); the tolerances of
+// 10-30 m/s; on rows of cubes, arriving at 1-6 m/s); the tolerances of
 // test_joint_crossing.cpp (1 % of seed Eq. 4 where the slider has moved 1 cm; overlaps under
 // 1 % of the smaller block), and the row in place within 1 mm.
 #include <cmath>
@@ -24,9 +24,9 @@ class FreeRowSolver : public ::testing::TestWithParam<Integrator> {};
 
 constexpr double kRowMovement = 1e-3;  // m: the row's elastic settling is micrometres
 
-// A slider on a row of free blocks 0.3 m thick that rest on a fixed plane: the row held to the
-// plane (and block to block) at `hold`, the slider on the row at `slide` (degrees). Returns the run
-// and how far any block of the row moved.
+// A slider on a row of free blocks (row_height thick) that rest on a fixed plane: the row held
+// to the plane (and block to block) at `hold`, the slider on the row at `slide` (degrees).
+// Returns the run and how far any block of the row moved.
 struct FreeRow {
   double slope = 28.0, hold = 45.0, slide = 18.0;
   double row_length = 0.4, row_height = 0.3, plane_length = 14.0;
@@ -168,6 +168,27 @@ TEST_P(FreeRowSolver, AHeavySliderCrossesAFreeRowUnderASmallDisplacementLimit) {
   expect_heavy_slider_crosses_free_row(GetParam(), {1.0}, 15.0, 8.0, 2e-4, 13.36, 12);
 }
 
+// Lays out a sweep's run: a plane long enough for the slider's 1.5 s at `f.speed`, the row along
+// all of it, and the slider's front `gap` before a joint of the row.
+void lay_out_along_the_row(FreeRow& f, double gap) {
+  f.plane_length = f.speed * kDuration + 10.0 + 2.0 * f.length;
+  f.row_blocks = static_cast<int>(std::ceil((f.plane_length - 1.0) / f.row_length));
+  int k = 1;
+  while (k * f.row_length - gap - f.length < 0.1) ++k;
+  f.rear = k * f.row_length - gap - f.length;
+}
+
+// What a sweep's run got wrong, after `label`: not completed, more than 1 % off seed Eq. 4, or
+// the row moved more than kRowMovement. Empty when the run is within both.
+std::string free_row_failure(const FreeRowRun& run, const FreeRow& f, const std::string& label) {
+  if (run.result.summary.status != RunStatus::Completed) return label + ": " + run.result.summary.message;
+  Crossing c;
+  c.slope = f.slope, c.friction = f.slide, c.speed = f.speed;
+  double when = 0.0;
+  const double error = displacement_error(run.result, c, &when);
+  if (error < kDisplacementTolerance && run.row_moved < kRowMovement) return {};
+  return label + ": " + std::to_string(error) + " off Eq. 4, row moved " + std::to_string(run.row_moved) + " m";
+}
 
 // Sliders on a free row at the coarse steps of a landslide run (10 ms x 3, Vajont's, 10 ms x 4
 // and 5 ms x 4; the tests above run 1 ms), substep solver: a 1.2 x 0.6 and a 3 x 1.5 m slider
@@ -187,28 +208,14 @@ std::vector<std::string> free_rows_at_coarse_steps(std::initializer_list<double>
             f.slope = slope, f.slide = slide, f.hold = hold, f.speed = speed;
             f.step = step, f.substeps = substeps;
             f.length = length, f.height = height, f.row_length = row_length;
-            f.plane_length = speed * kDuration + 10.0 + 2.0 * length;
-            f.row_blocks = static_cast<int>(std::ceil((f.plane_length - 1.0) / row_length));
-            int k = 1;
-            while (k * row_length - 0.02 - f.length < 0.1) ++k;
-            f.rear = k * row_length - 0.02 - f.length;  // the front 2 cm before a joint
+            lay_out_along_the_row(f, 0.02);  // the front 2 cm before a joint
             const FreeRowRun run = run_free_row(f, Integrator::Substep);
             char label[200];
             std::snprintf(label, sizeof label,
                           "%g m/s, %g deg (friction %g), slider %g x %g m, row of %g m, %g ms x %d", speed, slope,
                           slide, length, height, row_length, step * 1000, substeps);
             ++*runs;
-            if (run.result.summary.status != RunStatus::Completed) {
-              off.push_back(std::string(label) + ": " + run.result.summary.message);
-              continue;
-            }
-            Crossing c;
-            c.slope = f.slope, c.friction = f.slide, c.speed = f.speed;
-            double when = 0.0;
-            const double error = displacement_error(run.result, c, &when);
-            if (error >= kDisplacementTolerance || run.row_moved >= kRowMovement)
-              off.push_back(std::string(label) + ": " + std::to_string(error) + " off Eq. 4, row moved " +
-                            std::to_string(run.row_moved) + " m");
+            if (std::string failure = free_row_failure(run, f, label); !failure.empty()) off.push_back(failure);
           }
   return off;
 }
@@ -279,28 +286,15 @@ TEST(JointCrossingFreeRow, DISABLED_SlidersArrivingOnARowOfCubesLeaveTheRowInPla
             FreeRow f;
             f.slope = slope, f.slide = slide, f.hold = 60.0, f.speed = speed, f.mirrored = mirrored;
             f.length = length, f.height = height, f.row_length = cube, f.row_height = cube;
-            f.plane_length = speed * kDuration + 10.0 + 2.0 * length;
-            f.row_blocks = static_cast<int>(std::ceil((f.plane_length - 1.0) / cube));
-            int k = 1;
-            while (k * cube - 0.02 * cube - f.length < 0.1) ++k;
-            f.rear = k * cube - 0.02 * cube - f.length;  // the front 2 % of a cube before a joint
+            lay_out_along_the_row(f, 0.02 * cube);  // the front 2 % of a cube before a joint
             const FreeRowRun run = run_free_row(f, Integrator::Substep);
             ++runs;
             char label[200];
             std::snprintf(label, sizeof label, "%g m/s, %g deg (friction %g), slider %g x %g m, cubes of %g m%s", speed,
                           slope, slide, length, height, cube, mirrored ? ", descending to the left" : "");
-            if (run.result.summary.status != RunStatus::Completed) {
+            if (const std::string failure = free_row_failure(run, f, label); !failure.empty()) {
               ++off;
-              ADD_FAILURE() << label << ": " << run.result.summary.message;
-              continue;
-            }
-            Crossing c;
-            c.slope = f.slope, c.friction = f.slide, c.speed = f.speed;
-            double when = 0.0;
-            const double error = displacement_error(run.result, c, &when);
-            if (error >= kDisplacementTolerance || run.row_moved >= kRowMovement) {
-              ++off;
-              ADD_FAILURE() << label << ": " << error << " off Eq. 4, row moved " << run.row_moved << " m";
+              ADD_FAILURE() << failure;
             }
           }
   EXPECT_EQ(runs, 72);

@@ -247,7 +247,6 @@ TEST(ImpactRebound, DISABLED_AStruckStackComesToRestSubstep) {
   EXPECT_LT(s.worst, 0.01) << s.worst_case;
 }
 
-
 // Impacts under a step control that cuts the step hard: control.max_displacement_ratio 2e-4 and
 // 5e-5 of the half model size (4-6 mm and 1-1.6 mm of travel per step on these scenes), so a
 // striker at 10 m/s steps 0.1-0.4 ms instead of the scene's 5 or 10 ms. The substep solver's

@@ -7,32 +7,11 @@
 #include <iostream>
 #include <string>
 
-#include "forward/mirror.hpp"
 #include "tests/contact_scene_audit.hpp"
 #include "tests/slope_scene.hpp"
 
 namespace ddafit {
 namespace {
-
-// One crossing at `step` (time.step), on the slope as built or on its mirror image descending
-// to the left (forward/mirror.hpp): the run completes and the slider keeps within 1 % of seed
-// Eq. 4 where it has moved 1 cm. Returns the error; `label` names the run.
-double expect_crossing_at_step(const Crossing& c, Integrator integrator, double step, bool mirrored,
-                               std::string& label) {
-  Scene scene = crossing_scene(c, integrator);
-  scene.max_step = step;
-  if (mirrored) scene = mirrored_scene(scene);
-  SimulationResult r = simulate(scene);
-  if (mirrored) unmirror_history(r.history);
-  label = describe(c, integrator) + ", step " + std::to_string(step) + " s" +
-          (mirrored ? ", descending to the left" : "");
-  EXPECT_EQ(r.summary.status, RunStatus::Completed) << label << ": " << r.summary.message;
-  if (r.summary.status != RunStatus::Completed) return 1.0;
-  double when = 0.0;
-  const double error = displacement_error(r, c, &when);
-  EXPECT_LT(error, kDisplacementTolerance) << label << ": worst at t = " << when << " s";
-  return error;
-}
 
 // Sliders from rest at coarse steps (5 and 10 ms), the start of every released slope: slopes
 // of 10-40 deg, 1-8 deg steeper than the friction (a net acceleration down to 0.17 m/s^2),
