@@ -12,6 +12,7 @@
 // other manifold of their blocks, directly (docs/theory.md §13c).
 #pragma once
 
+#include <limits>
 #include <vector>
 
 #include "forward/substep/solve_contacts.hpp"
@@ -39,6 +40,11 @@ struct ImpactConvergence {
   // that hold the group at rest (a second complementarity solve) gave 2.6 % but doubled section
   // VII's wall, and a resting solve cut short created energy there.
   int settle_substeps = 0;
+  // m/s: a joint whose blocks slip past each other faster than this at a point is left out of
+  // the group (its impulses stay as the sweeps left them) and seeds none. Infinite for an
+  // impact's group; a settling group's is kSlipShare times the impact margin
+  // (converge_impacts.cpp says why; model revision 2026-12-04.2).
+  double slip = std::numeric_limits<double>::infinity();
   // Unit vector along gravity (zero without gravity). A block struck through a joint that
   // carries weight (its normal within 45 deg of `down`) settles as after an impact even when
   // the two sweeps took the blow (converge_impacts.cpp, mark_struck; model revision 2026-11-28.7).
