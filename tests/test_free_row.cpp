@@ -248,7 +248,8 @@ TEST(JointCrossingFreeRow, AHeavySliderFromRestCrossesAFreeRowAtCoarseStepsSubst
 // only one. At revision 2026-12-04.2 (a settling group leaves out its slipping joints; the cube-row
 // test below) 5 fail: the 3 x 1.5 m slider on 0.4 m blocks at 10 ms (10 and 30 m/s, 15 and 28 deg;
 // 68-82 % off, rows driven 18-26 m) and on 1.0 m blocks at 5 ms x 4 (30 m/s, 20 %, 4.0 m). Without
-// any impact group (an environment switch, not kept) 5 fail as well. docs/theory.md §13, "Limits of the substep solver".
+// any impact group (an environment switch, not kept) 5 fail as well. docs/theory.md §13, "Limits
+// of the substep solver".
 TEST(JointCrossingFreeRow, DISABLED_SlidersArrivingFastCrossAFreeRowAtCoarseStepsSubstep) {
   int runs = 0;
   const std::vector<std::string> off =
