@@ -289,8 +289,9 @@ std::vector<std::string> cube_rows_at(double step, int substeps, int* runs) {
             const FreeRowRun run = run_free_row(f, Integrator::Substep);
             ++*runs;
             char label[240];
-            std::snprintf(label, sizeof label, "%g m/s, %g deg (friction %g), slider %g x %g m, cubes of %g m, %g ms x %d%s",
-                          speed, slope, slide, length, height, cube, 1e3 * step, substeps,
+            std::snprintf(label, sizeof label,
+                          "%g m/s, %g deg (friction %g), slider %g x %g m, cubes of %g m, %g ms x %d%s", speed,
+                          slope, slide, length, height, cube, 1e3 * step, substeps,
                           mirrored ? ", descending to the left" : "");
             if (std::string failure = free_row_failure(run, f, label); !failure.empty()) off.push_back(failure);
           }
@@ -323,7 +324,8 @@ TEST(JointCrossingFreeRow, DISABLED_SlidersArrivingOnARowOfCubesAtCoarserStepsSu
   const std::vector<std::string> at_5ms = cube_rows_at(0.005, 4, &runs);
   off.insert(off.end(), at_5ms.begin(), at_5ms.end());
   EXPECT_EQ(runs, 144);
-  std::printf("[measured] %d sliders arriving on rows of cubes at 2 and 5 ms x 4, substep: %zu off\n", runs, off.size());
+  std::printf("[measured] %d sliders arriving on rows of cubes at 2 and 5 ms x 4, substep: %zu off\n", runs,
+              off.size());
   for (const std::string& o : off) ADD_FAILURE() << o;
 }
 

@@ -120,7 +120,8 @@ void converge_group(std::vector<ContactManifold>& manifolds, const BlockManifold
         if (!st.masses[b].moves) continue;
         for (int j = of_block.first[b]; j < of_block.first[b + 1]; ++j) {
           const int other = of_block.ids[j];
-          if (listed[other] || slipping(manifolds[other], st, settings.slip) || !unresolved(manifolds[other], st, h, grow))
+          if (listed[other] || slipping(manifolds[other], st, settings.slip) ||
+              !unresolved(manifolds[other], st, h, grow))
             continue;
           take_in(other, manifolds, of_block, st, settings.slip, involved, listed, list);
           grew = true;
