@@ -236,8 +236,8 @@ TEST(JointCrossingFreeRow, AHeavySliderFromRestCrossesAFreeRowAtCoarseStepsSubst
 }
 
 // KNOWN DEFECT (found 2026-12-04): the class above from rest and arriving at 10 and 30 m/s, and at
-// 28 deg too (72 runs): 8 fail at revision 2026-12-04.1 (16 before it), 5 at .2 (below). The 3 x 1.5 m slider
-// arriving at 10-30 m/s drags the row of 0.4 m blocks along (16-25 m, 61-83 % off Eq. 4) at
+// 28 deg too (72 runs): 8 fail at revision 2026-12-04.1 (16 before it), 5 at .2 (below). The
+// 3 x 1.5 m slider arriving at 10-30 m/s drags the row of 0.4 m blocks along (16-25 m, 61-83 % off Eq. 4) at
 // 10 ms x 3 and x 4, and a row of 1.0 m blocks 4 m at 5 ms x 4 (30 m/s, 20 % off); from rest at
 // 28 deg at 10 ms x 4 the row creeps 1.7 mm. At 1 ms every such run passes, and the implicit
 // solver passes them at 10 ms. Traced (10 m/s, 15 deg, 10 ms x 4): the quiet start's 500 steps,
@@ -258,21 +258,6 @@ TEST(JointCrossingFreeRow, DISABLED_SlidersArrivingFastCrossAFreeRowAtCoarseStep
   for (const std::string& o : off) ADD_FAILURE() << o;
 }
 
-// Substep solver at the default 1 ms x 4: sliders of 1 x 0.5 and 3 x 1.5 m arriving at 1, 3 and
-// 6 m/s on rows of cubes (0.1 and 0.4 m, each stable on its own: the row held at 60 deg, the
-// slider at 17-33 deg on 25-35 deg slopes), both ways down: 72 runs, each within 1 % of seed
-// Eq. 4 with the row moved less than 1 mm. The sweeps above start from rest, or arrive fast only
-// at coarse steps on rows 0.3 m thick. Found 2026-12-04 by a black-box sweep through `ddafit
-// simulate`: until model revision 2026-12-04.2, 18 of the 72 failed, worst the 3 m slider at 6 m/s
-// on 0.1 m cubes at 35 deg (friction 33), 48 % off with the row driven 19.6 m. The cause (traced
-// 2026-12-04 with environment switches, not kept): a cube rattling under the heavy slider at a
-// few mm/s was marked struck, its settling group took in the slider, and the direct solve put the
-// slider's load on the one or two cubes standing micrometres proud (a cube carried 30 times its
-// weight), whose friction then drove the row. Without impact groups, or without settling, none of
-// the 72 failed; more sweeps in the group solve (16: 9 off), friction solved with the normals
-// (staggered, 8 rounds: still off) and the soft step (1 off) did not cure it. Since .2 a settling
-// group leaves out the joints that slip faster than three times the impact margin
-// (converge_impacts.cpp, kSlipShare): 0 of 72 off.
 // The cube-row class at one step: the failures of its 72 runs, counted in `runs`.
 std::vector<std::string> cube_rows_at(double step, int substeps, int* runs) {
   std::vector<std::string> off;
@@ -298,6 +283,21 @@ std::vector<std::string> cube_rows_at(double step, int substeps, int* runs) {
   return off;
 }
 
+// Substep solver at the default 1 ms x 4: sliders of 1 x 0.5 and 3 x 1.5 m arriving at 1, 3 and
+// 6 m/s on rows of cubes (0.1 and 0.4 m, each stable on its own: the row held at 60 deg, the
+// slider at 17-33 deg on 25-35 deg slopes), both ways down: 72 runs, each within 1 % of seed
+// Eq. 4 with the row moved less than 1 mm. The sweeps above start from rest, or arrive fast only
+// at coarse steps on rows 0.3 m thick. Found 2026-12-04 by a black-box sweep through `ddafit
+// simulate`: until model revision 2026-12-04.2, 18 of the 72 failed, worst the 3 m slider at 6 m/s
+// on 0.1 m cubes at 35 deg (friction 33), 48 % off with the row driven 19.6 m. The cause (traced
+// 2026-12-04 with environment switches, not kept): a cube rattling under the heavy slider at a
+// few mm/s was marked struck, its settling group took in the slider, and the direct solve put the
+// slider's load on the one or two cubes standing micrometres proud (the slider pressed on one cube
+// with 26 times its share of the slider's weight), whose friction then drove the row. Without
+// impact groups, or without settling, none of the 72 failed; more sweeps in the group solve (16: 9 off), friction solved with the normals
+// (staggered, 8 rounds: still off) and the soft step (1 off) did not cure it. Since .2 a settling
+// group leaves out the joints that slip faster than three times the impact margin
+// (converge_impacts.cpp, kSlipShare): 0 of 72 off.
 TEST(JointCrossingFreeRow, SlidersArrivingOnARowOfCubesLeaveTheRowInPlaceSubstep) {
   int runs = 0;
   const std::vector<std::string> off = cube_rows_at(kStep, SimulationOptions{}.substeps, &runs);
@@ -309,9 +309,8 @@ TEST(JointCrossingFreeRow, SlidersArrivingOnARowOfCubesLeaveTheRowInPlaceSubstep
 // KNOWN DEFECT: the cube-row class above at 2 and 5 ms x 4 (144 runs). At revision 2026-12-04.2:
 // 21 of 72 off at 2 ms x 4 and 28 at 5 ms x 4. Through `ddafit simulate` on the same class laid out
 // by a probe script (not kept): 22 off at 2 ms x 4 (33 at .1), 27 at 5 ms x 4 (31) and 28 at
-// 10 ms x 3 (37), and as many
-// with the impact groups switched off (22 at 2 ms, 30 at 10 ms; an environment switch, not kept),
-// so what is left is the sweeps'. One traced run (1 x 0.5 m at 3 m/s on 0.1 m cubes, 35 deg,
+// 10 ms x 3 (37), and as many with the impact groups switched off (22 at 2 ms, 30 at 10 ms; an
+// environment switch, not kept), so what is left is the sweeps'. One traced run (1 x 0.5 m at 3 m/s on 0.1 m cubes, 35 deg,
 // friction 33, 2 ms x 4, no groups): at 0.21 s the whole row jolted at once (cubes at both ends
 // moved 0.2-2 mm) and the slider was launched off the row at 1.1 m/s upwards, landing 65 % short
 // of seed Eq. 4. The probe's own layout of the class at 1 ms x 4 leaves 1 of 72 off (18 at .1), the
