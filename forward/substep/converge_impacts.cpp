@@ -54,8 +54,10 @@ constexpr double kSlipShare = 3.0;
 // A joint carries weight when its normal is within 45 deg of gravity (cos 45 deg).
 constexpr double kWeightBearingCosine = 0.70710678118654752;
 
-// Whether m's blocks slide past each other faster than `speed` at one of its points.
+// Whether m's blocks slide past each other faster than `speed` at one of its points. An impact's
+// group takes every joint (infinite `speed`): no point is read.
 bool slipping(const ContactManifold& m, const SweepState& st, double speed) {
+  if (std::isinf(speed)) return false;
   for (int q = 0; q < m.point_count; ++q)
     if (std::abs(relative_rate(m.tangent, m.points[q], st.velocity[m.block_a], st.velocity[m.block_b])) > speed)
       return true;
