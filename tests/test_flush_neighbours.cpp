@@ -138,8 +138,9 @@ TEST(FlushNeighbours, ABlockRestingOnOneBlockBesideTheNextOfAFlushSurfaceHasNoCo
 
 // "Proud edges" (manifold.hpp): a block whose corner has just crossed a joint onto a neighbour
 // that stands proud of the face it rests on by no more than linear_slop touches that neighbour
-// through its own face (the one it was held up by), not through the joint's face. A step
-// higher than that is a step.
+// through its own face (the one it was held up by), not through the joint's face, also when
+// the corner rests up to the slop deep in the blocks behind. A step higher than both together
+// (the rule's window, twice the slop) is a step.
 
 // A block of the row ahead (length w, thickness 0.75 w) whose top runs along the slope line
 // through kFar from the joint (u = 0) on, and a slider (length 3 w, height 1.5 w) resting on
@@ -202,12 +203,48 @@ TEST(ProudEdges, ACornerJustAcrossAJointOntoAProudEdgeTouchesThroughItsOwnFace) 
           }
 }
 
-TEST(ProudEdges, AStepHigherThanTheSlopStopsTheCorner) {
-  // The same corner against an edge 2-100 times the slop high: a real step. Its face is the
-  // contact (normal along the slope, back up it), and the depth is how far the corner crossed.
+TEST(ProudEdges, ACornerRestingDeepMeetsAnEdgeProudOfItsSupportsThroughItsOwnFace) {
+  // The corner rests 50-100 % of the slop deep in the blocks behind (blocks at rest sit up to
+  // the slop deep before the push-out acts) and the edge ahead stands 30-90 % of the slop proud
+  // of them; the corner has crossed the joint by 10-90 % of the edge's height. The edge's face
+  // overlaps the corner by up to twice the slop, more than the joint's face plus the slop:
+  // before revision 2026-12-05.1 the rule asked for that, took the joint's face, and a 1 x 0.5 m
+  // slider on a row of 0.1 m cubes at 2 ms x 4 met the first unloaded cube's rear face 9.9 um
+  // deep with its own face 51 um deep in the cube's top, and was thrown off the row at 1 m/s
+  // (tests/test_free_row.cpp, cube rows at coarser steps).
+  int checked = 0;
   for (const double slope : {0.0, 15.0, 35.0})
     for (const double w : {0.15, 1.0, 8.2})
-      for (const double proud_share : {2.0, 10.0, 100.0})
+      for (const double rest_share : {0.5, 1.0})
+        for (const double proud_share : {0.3, 0.6, 0.9})
+          for (const double crossed_share : {0.1, 0.5, 0.9})
+            for (const bool slider_first : {true, false}) {
+              const double slop = 5e-5 * w, proud = proud_share * slop, overlap = proud + rest_share * slop;
+              const ProudEdge e = proud_edge(slope, w, overlap, crossed_share * proud);
+              SCOPED_TRACE(testing::Message() << "slope " << slope << " deg, block " << w << " m, resting "
+                                              << rest_share << " slop deep, edge " << proud_share
+                                              << " slop proud, crossed " << crossed_share << " of it, slider "
+                                              << (slider_first ? "a" : "b"));
+              const ManifoldSettings ms = free_pair(w, e.up);
+              const Manifold m = slider_first ? collide_polygons(e.slider, e.ahead, ms)
+                                              : collide_polygons(e.ahead, e.slider, ms);
+              ASSERT_GE(m.point_count, 1);
+              const Vec2 expected = slider_first ? Vec2(-e.up) : e.up;  // from a towards b
+              EXPECT_LT((m.normal - expected).norm(), 1e-9);
+              EXPECT_NEAR(deepest(m), -overlap, 1e-9 * w + 1e-10);
+              ++checked;
+            }
+  EXPECT_EQ(checked, 324);
+}
+
+TEST(ProudEdges, AStepHigherThanTheWindowStopsTheCorner) {
+  // The same corner, resting on the line of the blocks behind, against an edge 2.5-100 times
+  // the slop high: a real step, higher than the rule's window (twice the slop: a corner resting
+  // up to the slop deep meeting an edge up to the slop proud). Its face is the contact (normal
+  // along the slope, back up it), and the depth is how far the corner crossed.
+  for (const double slope : {0.0, 15.0, 35.0})
+    for (const double w : {0.15, 1.0, 8.2})
+      for (const double proud_share : {2.5, 10.0, 100.0})
         for (const bool slider_first : {true, false}) {
           const double slop = 5e-5 * w, proud = proud_share * slop, crossed = 0.5 * slop;
           const ProudEdge e = proud_edge(slope, w, proud, crossed);

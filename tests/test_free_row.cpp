@@ -7,6 +7,7 @@
 // test_joint_crossing.cpp (1 % of seed Eq. 4 where the slider has moved 1 cm; overlaps under
 // 1 % of the smaller block), and the row in place within 1 mm.
 #include <cmath>
+#include <limits>
 #include <cstdio>
 #include <initializer_list>
 #include <tuple>
@@ -235,8 +236,11 @@ TEST(JointCrossingFreeRow, AHeavySliderFromRestCrossesAFreeRowAtCoarseStepsSubst
   for (const std::string& o : off) ADD_FAILURE() << o;
 }
 
-// KNOWN DEFECT (found 2026-12-04): the class above from rest and arriving at 10 and 30 m/s, and at
-// 28 deg too (72 runs): 8 fail at revision 2026-12-04.1 (16 before it), 5 at .2 (below). The
+// The class above from rest and arriving at 10 and 30 m/s, and at 28 deg too (72 runs), each
+// within 1 % of seed Eq. 4 with the row moved less than 1 mm. A known defect from 2026-12-04 to
+// model revision 2026-12-05.1 ("Proud edges" reads the face the blocks were held up by within its
+// whole window; the cube-row tests below), which mended it: 0 of 72 off since. Before it, 8 failed
+// at revision 2026-12-04.1 (16 before that), 5 at .2 (the history below). The
 // 3 x 1.5 m slider arriving at 10-30 m/s drags the row of 0.4 m blocks along (16-25 m, 61-83 % off Eq. 4) at
 // 10 ms x 3 and x 4, and a row of 1.0 m blocks 4 m at 5 ms x 4 (30 m/s, 20 % off); from rest at
 // 28 deg at 10 ms x 4 the row creeps 1.7 mm. At 1 ms every such run passes, and the implicit
@@ -250,22 +254,29 @@ TEST(JointCrossingFreeRow, AHeavySliderFromRestCrossesAFreeRowAtCoarseStepsSubst
 // 68-82 % off, rows driven 18-26 m) and on 1.0 m blocks at 5 ms x 4 (30 m/s, 20 %, 4.0 m). Without
 // any impact group (an environment switch, not kept) 5 fail as well. docs/theory.md §13, "Limits
 // of the substep solver".
-TEST(JointCrossingFreeRow, DISABLED_SlidersArrivingFastCrossAFreeRowAtCoarseStepsSubstep) {
+TEST(JointCrossingFreeRow, SlidersArrivingFastCrossAFreeRowAtCoarseStepsSubstep) {
   int runs = 0;
   const std::vector<std::string> off =
       free_rows_at_coarse_steps({0.0, 10.0, 30.0}, {{15.0, 8.0, 60.0}, {28.0, 18.0, 45.0}}, &runs);
   EXPECT_EQ(runs, 72);
+  std::printf("[measured] %d sliders arriving fast on free rows at coarse steps, substep: %zu off\n", runs, off.size());
   for (const std::string& o : off) ADD_FAILURE() << o;
 }
 
-// The cube-row class at one step: the failures of its 72 runs, counted in `runs`.
-std::vector<std::string> cube_rows_at(double step, int substeps, int* runs) {
+// The cube-row class at one step: the failures of its 72 runs, counted in `runs`; only the
+// runs whose slider outweighs a cube more than `above` and at most `up_to` times (3.1, 28, 50
+// and 450 times: 1 x 0.5 m on 0.4 m cubes, 3 x 1.5 m on 0.4 m, 1 x 0.5 m on 0.1 m, 3 x 1.5 m on
+// 0.1 m).
+std::vector<std::string> cube_rows_at(double step, int substeps, int* runs, double above = 0.0,
+                                      double up_to = std::numeric_limits<double>::infinity()) {
   std::vector<std::string> off;
   for (const auto& [slope, slide] : {std::pair{25.0, 17.0}, {35.0, 27.0}, {35.0, 33.0}})
     for (const double speed : {1.0, 3.0, 6.0})
       for (const auto& [length, height] : {std::pair{1.0, 0.5}, std::pair{3.0, 1.5}})
         for (const double cube : {0.1, 0.4})
           for (const bool mirrored : {false, true}) {
+            const double ratio = length * height / (cube * cube);
+            if (!(ratio > above && ratio <= up_to)) continue;
             FreeRow f;
             f.slope = slope, f.slide = slide, f.hold = 60.0, f.speed = speed, f.mirrored = mirrored;
             f.length = length, f.height = height, f.row_length = cube, f.row_height = cube;
@@ -306,25 +317,42 @@ TEST(JointCrossingFreeRow, SlidersArrivingOnARowOfCubesLeaveTheRowInPlaceSubstep
   for (const std::string& o : off) ADD_FAILURE() << o;
 }
 
-// KNOWN DEFECT: the cube-row class above at 2 and 5 ms x 4 (144 runs). At revision 2026-12-04.2:
-// 21 of 72 off at 2 ms x 4 and 28 at 5 ms x 4. Through `ddafit simulate` on the same class laid out
-// by a probe script (not kept): 22 off at 2 ms x 4 (33 at .1), 27 at 5 ms x 4 (31) and 28 at
-// 10 ms x 3 (37), and as many with the impact groups switched off (22 at 2 ms, 30 at 10 ms; an
-// environment switch, not kept), so what is left is the sweeps'. One traced run (1 x 0.5 m at 3 m/s on 0.1 m cubes, 35 deg,
-// friction 33, 2 ms x 4, no groups): at 0.21 s the whole row jolted at once (cubes at both ends
-// moved 0.2-2 mm) and the slider was launched off the row at 1.1 m/s upwards, landing 65 % short
-// of seed Eq. 4. The probe's own layout of the class at 1 ms x 4 leaves 1 of 72 off (18 at .1), the
-// 3 x 1.5 m slider at 1 m/s on 0.1 m cubes at 25 deg, descending to the left: the row driven
-// 2.5 m, 3.4 m with no groups. The slider outweighs a cube 50-450 times; Gauss-Seidel sweeps
-// converge slowest there (docs/theory.md §13, "Limits of the substep solver").
+// The cube-row class at 2 ms x 4, sliders up to 50 times a cube (54 runs): each within 1 % of
+// seed Eq. 4, the row moved less than 1 mm. Until model revision 2026-12-05.1, 8 of these 54
+// failed (all the 1 x 0.5 m slider on 0.1 m cubes, 8-70 % off). Traced (3 m/s, 35 deg, friction
+// 33): the loaded cubes sink deeper into the plane than the unloaded one ahead, whose edge then
+// stood 49-51 um proud of the slider's face (the slop is 29.5 um); the slider's corner, 9.9 um
+// across the joint, overlapped the cube's top by 51 um, past the separating axis's overlap plus
+// the slop, so "Proud edges" let the cube's rear face be the contact, and the slider was thrown
+// off the row at 1 m/s. Since .1 the rule takes the face the blocks were held up by wherever it
+// overlaps no deeper than its window (twice the slop: the corner rests up to the slop deep and
+// the edge stands up to the slop proud; tests/test_flush_neighbours.cpp).
+TEST(JointCrossingFreeRow, SlidersUpToFiftyTimesACubeLeaveTheRowInPlaceAtTwoMillisecondsSubstep) {
+  int runs = 0;
+  const std::vector<std::string> off = cube_rows_at(0.002, 4, &runs, 0.0, 50.0);
+  EXPECT_EQ(runs, 54);
+  std::printf("[measured] %d sliders up to 50 times a cube arriving on rows of cubes at 2 ms x 4, substep: %zu off\n",
+              runs, off.size());
+  for (const std::string& o : off) ADD_FAILURE() << o;
+}
+
+// KNOWN DEFECT: the cube-row class at 2 ms x 4 with the slider 450 times a cube (3 x 1.5 m on
+// 0.1 m cubes, 18 runs) and at 5 ms x 4 (72 runs). At revision 2026-12-04.2: 21 of 72 off at 2 ms
+// x 4 (13 of these 18) and 28 at 5 ms x 4; at 2026-12-05.1: 12 of the 18 at 2 ms, 28 of 72 at 5 ms. Through
+// `ddafit simulate` on the same class laid out by a probe script (not kept), at .2: 22 off at 2 ms
+// x 4 (33 at .1; 12 at 2026-12-05.1, all 3 x 1.5 m on 0.1 m cubes), 27 at 5 ms x 4 (31; 27 at
+// 2026-12-05.1, whose "Proud edges" window changed none of the 3 x 1.5 m runs) and 28 at 10 ms x 3
+// (37), and as many with the impact groups switched off (22 at 2 ms, 30 at 10 ms; an environment
+// switch, not kept), so what is left is the sweeps'. The slider outweighs a cube 450 times;
+// Gauss-Seidel sweeps converge slowest there (docs/theory.md §13, "Limits of the substep solver").
 TEST(JointCrossingFreeRow, DISABLED_SlidersArrivingOnARowOfCubesAtCoarserStepsSubstep) {
   int runs = 0;
-  std::vector<std::string> off = cube_rows_at(0.002, 4, &runs);
+  std::vector<std::string> off = cube_rows_at(0.002, 4, &runs, 50.0);
   const std::vector<std::string> at_5ms = cube_rows_at(0.005, 4, &runs);
   off.insert(off.end(), at_5ms.begin(), at_5ms.end());
-  EXPECT_EQ(runs, 144);
-  std::printf("[measured] %d sliders arriving on rows of cubes at 2 and 5 ms x 4, substep: %zu off\n", runs,
-              off.size());
+  EXPECT_EQ(runs, 90);
+  std::printf("[measured] %d sliders arriving on rows of cubes at 2 ms x 4 (450 times a cube) and 5 ms x 4, substep: %zu off\n",
+              runs, off.size());
   for (const std::string& o : off) ADD_FAILURE() << o;
 }
 

@@ -218,19 +218,21 @@ Manifold collide_polygons(std::span<const Vec2> a, std::span<const Vec2> b, cons
   bool flip = edge_a < 0 || (edge_b >= 0 && better_b);
   // Proud edges (manifold.hpp): a corner just across a joint whose far block stands up to
   // proud_depth proud overlaps it along its own face and along the joint's face alike; the
-  // face along which the two blocks were held up in the last step is the contact.
+  // face along which the two blocks were held up in the last step is the contact. That face
+  // may overlap by the window, however little the joint's face does (proud_face's depth):
+  // the corner rests up to h deep in the blocks it is held up by, and the edge stands up to h
+  // proud of those.
   const double deepest = std::max(axis_a.separation, axis_b.separation);
   const double proud_depth = std::max(linear_slop, settings.proud_floor);
   if (!flush_face && deepest <= 0.0 && deepest >= -kProudWindow * proud_depth) {
-    const ProudFace proud_a = proud_face(sa, a_solid, sb, limits_a, 2.0 * proud_depth);
-    const ProudFace proud_b = proud_face(sb, b_solid, sa, limits_b, 2.0 * proud_depth);
+    const ProudFace proud_a = proud_face(sa, a_solid, sb, limits_a, kProudWindow * proud_depth);
+    const ProudFace proud_b = proud_face(sb, b_solid, sa, limits_b, kProudWindow * proud_depth);
     const bool from_b = proud_b.support > proud_a.support;
     const ProudFace& proud = from_b ? proud_b : proud_a;
     const auto chosen_support = [&] {
       return support_agreement(face_normal(flip ? sb : sa, flip ? edge_b : edge_a, flat), flip ? limits_b : limits_a);
     };
-    if (proud.edge >= 0 && proud.separation >= deepest - proud_depth &&
-        proud.support > chosen_support() + kSupportTie) {
+    if (proud.edge >= 0 && proud.support > chosen_support() + kSupportTie) {
       (from_b ? edge_b : edge_a) = proud.edge;
       flip = from_b;
     }

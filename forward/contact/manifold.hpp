@@ -115,9 +115,9 @@ struct ManifoldSettings {
 // their lines; else the one the polygon lies closer to the line of.
 //
 // Proud edges: when the two polygons overlap by no more than 2h, h = max(linear_slop,
-// proud_floor), along every axis (deepest separation in [-2h, 0]) and a face overlapped within
-// h of that agrees clearly better (kSupportTie) with the supports of the last step than the
-// separating axis's face, that face is the reference. A block on a row of free blocks presses
+// proud_floor), along every axis (deepest separation in [-2h, 0]) and a face overlapped no
+// deeper than 2h agrees clearly better (kSupportTie) with the supports of the last step than
+// the separating axis's face, that face is the reference. A block on a row of free blocks presses
 // the ones under it a little deeper into their own supports than the unloaded block ahead,
 // whose edge then stands proud by micrometres (1.6 um for a 3 m x 1.5 m slider on 0.4 m blocks
 // held by a soft contact). When the slider's corner has just crossed that joint, its front face overlaps
@@ -126,10 +126,14 @@ struct ManifoldSettings {
 // joint for good (docs/theory.md §13). An edge that stands up to linear_slop proud is below
 // the contact's resolution (the substep solver pushes out only overlaps deeper than the slop);
 // proud_floor keeps h at a few micrometres a metre of block where a small displacement limit
-// makes the slop smaller than such an edge. A real step (higher than h) still stops the block:
-// its top face lies more than h beyond the corner's overlap of its side. The window is 2h, not
-// h, because blocks at rest overlap their supports by up to the slop before the push-out acts,
-// and a corner that rests that deep can meet a proud edge besides. Where four blocks of two
+// makes the slop smaller than such an edge. A real step (higher than 2h) still stops the block:
+// its top face lies beyond the window. The window is 2h, not h, because blocks at rest overlap
+// their supports by up to the slop before the push-out acts, and a corner that rests that deep
+// can meet a proud edge besides; for the same reason the face may overlap by up to 2h however
+// little the joint's face does. Until model revision 2026-12-05.1 it had to lie within h of the
+// joint's face's overlap: a 1 x 0.5 m slider on 0.1 m cubes at 2 ms x 4, 9.9 um across a joint
+// onto a cube standing proud of the loaded ones, overlapped the cube's top by 51 um (h 29.5 um),
+// met its rear face instead and was thrown off the row (tests/test_free_row.cpp). Where four blocks of two
 // layers meet at one corner on a joint leaning through both (model revision 2026-12-03.5), the
 // top layer sinks into the bottom one by its resting overlap (and shears forward on it), and the
 // two blocks that touch only at that corner overlap by about the slop along the layers' face and
