@@ -177,6 +177,18 @@ ManifoldSettings free_pair(double w, const Vec2& up) {
   return m;
 }
 
+// The contact of the pair through the face the slider was held up by: the slider's bottom on
+// the block ahead's top, normal along the slope's normal (1e-9: round-off at 2.4 km), `depth`
+// deep.
+void expect_held_up_face(const ProudEdge& e, double w, bool slider_first, double depth) {
+  const ManifoldSettings ms = free_pair(w, e.up);
+  const Manifold m = slider_first ? collide_polygons(e.slider, e.ahead, ms) : collide_polygons(e.ahead, e.slider, ms);
+  ASSERT_GE(m.point_count, 1);
+  const Vec2 expected = slider_first ? Vec2(-e.up) : e.up;  // from a towards b
+  EXPECT_LT((m.normal - expected).norm(), 1e-9);
+  EXPECT_NEAR(deepest(m), -depth, 1e-9 * w + 1e-10);
+}
+
 TEST(ProudEdges, ACornerJustAcrossAJointOntoAProudEdgeTouchesThroughItsOwnFace) {
   // The edge ahead stands 10-90 % of the slop proud, the corner has crossed by 10-90 % of
   // that: the joint face overlaps less than the edge does, so the separating axis alone
@@ -193,13 +205,7 @@ TEST(ProudEdges, ACornerJustAcrossAJointOntoAProudEdgeTouchesThroughItsOwnFace) 
             SCOPED_TRACE(testing::Message() << "slope " << slope << " deg, block " << w << " m, edge "
                                             << proud_share << " slop proud, crossed " << crossed_share
                                             << " of it, slider " << (slider_first ? "a" : "b"));
-            const ManifoldSettings ms = free_pair(w, e.up);
-            const Manifold m = slider_first ? collide_polygons(e.slider, e.ahead, ms)
-                                            : collide_polygons(e.ahead, e.slider, ms);
-            ASSERT_GE(m.point_count, 1);
-            const Vec2 expected = slider_first ? Vec2(-e.up) : e.up;  // from a towards b
-            EXPECT_LT((m.normal - expected).norm(), 1e-9);
-            EXPECT_NEAR(deepest(m), -proud, 1e-9 * w + 1e-10);
+            expect_held_up_face(e, w, slider_first, proud);
           }
 }
 
@@ -225,13 +231,7 @@ TEST(ProudEdges, ACornerRestingDeepMeetsAnEdgeProudOfItsSupportsThroughItsOwnFac
                                               << rest_share << " slop deep, edge " << proud_share
                                               << " slop proud, crossed " << crossed_share << " of it, slider "
                                               << (slider_first ? "a" : "b"));
-              const ManifoldSettings ms = free_pair(w, e.up);
-              const Manifold m = slider_first ? collide_polygons(e.slider, e.ahead, ms)
-                                              : collide_polygons(e.ahead, e.slider, ms);
-              ASSERT_GE(m.point_count, 1);
-              const Vec2 expected = slider_first ? Vec2(-e.up) : e.up;  // from a towards b
-              EXPECT_LT((m.normal - expected).norm(), 1e-9);
-              EXPECT_NEAR(deepest(m), -overlap, 1e-9 * w + 1e-10);
+              expect_held_up_face(e, w, slider_first, overlap);
               ++checked;
             }
   EXPECT_EQ(checked, 324);
