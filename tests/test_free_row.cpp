@@ -344,7 +344,9 @@ TEST(JointCrossingFreeRow, SlidersUpToFiftyTimesACubeLeaveTheRowInPlaceAtTwoMill
 // 2026-12-05.1, whose "Proud edges" window changed none of the 3 x 1.5 m runs) and 28 at 10 ms x 3
 // (37), and as many with the impact groups switched off (22 at 2 ms, 30 at 10 ms; an environment
 // switch, not kept), so what is left is the sweeps'. The slider outweighs a cube 450 times;
-// Gauss-Seidel sweeps converge slowest there (docs/theory.md §13, "Limits of the substep solver").
+// Gauss-Seidel sweeps converge slowest there. With six velocity sweeps per substep instead of two
+// (an environment switch, not kept) none of the 18 at 2 ms is off; with sixteen, 8 of the 72 at
+// 5 ms, all the 450-times slider (docs/theory.md §13, "Limits of the substep solver").
 TEST(JointCrossingFreeRow, DISABLED_SlidersArrivingOnARowOfCubesAtCoarserStepsSubstep) {
   int runs = 0;
   std::vector<std::string> off = cube_rows_at(0.002, 4, &runs, 50.0);
