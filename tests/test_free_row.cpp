@@ -7,7 +7,6 @@
 // test_joint_crossing.cpp (1 % of seed Eq. 4 where the slider has moved 1 cm; overlaps under
 // 1 % of the smaller block), and the row in place within 1 mm.
 #include <cmath>
-#include <limits>
 #include <cstdio>
 #include <initializer_list>
 #include <tuple>
@@ -263,20 +262,16 @@ TEST(JointCrossingFreeRow, SlidersArrivingFastCrossAFreeRowAtCoarseStepsSubstep)
   for (const std::string& o : off) ADD_FAILURE() << o;
 }
 
-// The cube-row class at one step: the failures of its 72 runs, counted in `runs`; only the
-// runs whose slider outweighs a cube more than `above` and at most `up_to` times (3.1, 28, 50
-// and 450 times: 1 x 0.5 m on 0.4 m cubes, 3 x 1.5 m on 0.4 m, 1 x 0.5 m on 0.1 m, 3 x 1.5 m on
-// 0.1 m).
-std::vector<std::string> cube_rows_at(double step, int substeps, int* runs, double above = 0.0,
-                                      double up_to = std::numeric_limits<double>::infinity()) {
+// The cube-row class at one step: the failures of its 72 runs, counted in `runs`. The sliders
+// outweigh a cube 3.1, 28, 50 and 450 times (1 x 0.5 m on 0.4 m cubes, 3 x 1.5 m on 0.4 m,
+// 1 x 0.5 m on 0.1 m, 3 x 1.5 m on 0.1 m).
+std::vector<std::string> cube_rows_at(double step, int substeps, int* runs) {
   std::vector<std::string> off;
   for (const auto& [slope, slide] : {std::pair{25.0, 17.0}, {35.0, 27.0}, {35.0, 33.0}})
     for (const double speed : {1.0, 3.0, 6.0})
       for (const auto& [length, height] : {std::pair{1.0, 0.5}, std::pair{3.0, 1.5}})
         for (const double cube : {0.1, 0.4})
           for (const bool mirrored : {false, true}) {
-            const double ratio = length * height / (cube * cube);
-            if (!(ratio > above && ratio <= up_to)) continue;
             FreeRow f;
             f.slope = slope, f.slide = slide, f.hold = 60.0, f.speed = speed, f.mirrored = mirrored;
             f.length = length, f.height = height, f.row_length = cube, f.row_height = cube;
@@ -317,44 +312,45 @@ TEST(JointCrossingFreeRow, SlidersArrivingOnARowOfCubesLeaveTheRowInPlaceSubstep
   for (const std::string& o : off) ADD_FAILURE() << o;
 }
 
-// The cube-row class at 2 ms x 4, sliders up to 50 times a cube (54 runs): each within 1 % of
-// seed Eq. 4, the row moved less than 1 mm. Until model revision 2026-12-05.1, 8 of these 54
-// failed (all the 1 x 0.5 m slider on 0.1 m cubes, 8-70 % off). Traced (3 m/s, 35 deg, friction
-// 33): the loaded cubes sink deeper into the plane than the unloaded one ahead, whose edge then
-// stood 49-51 um proud of the slider's face (the slop is 29.5 um); the slider's corner, 9.9 um
-// across the joint, overlapped the cube's top by 51 um, past the separating axis's overlap plus
-// the slop, so "Proud edges" let the cube's rear face be the contact, and the slider was thrown
-// off the row at 1 m/s. Since .1 the rule takes the face the blocks were held up by wherever it
-// overlaps no deeper than its window (twice the slop: the corner rests up to the slop deep and
-// the edge stands up to the slop proud; tests/test_flush_neighbours.cpp).
-TEST(JointCrossingFreeRow, SlidersUpToFiftyTimesACubeLeaveTheRowInPlaceAtTwoMillisecondsSubstep) {
+// The cube-row class at 2 ms x 4 (72 runs): each within 1 % of seed Eq. 4, the row moved less
+// than 1 mm. Two defects were mended in turn:
+// - Until model revision 2026-12-05.1, 8 runs of the 1 x 0.5 m slider on 0.1 m cubes (50 times a
+//   cube) failed, 8-70 % off. Traced (3 m/s, 35 deg, friction 33): the loaded cubes sink deeper
+//   into the plane than the unloaded one ahead, whose edge then stood 49-51 um proud of the
+//   slider's face (the slop is 29.5 um); the slider's corner, 9.9 um across the joint,
+//   overlapped the cube's top by 51 um, past the separating axis's overlap plus the slop, so
+//   "Proud edges" let the cube's rear face be the contact, and the slider was thrown off the row
+//   at 1 m/s. Since .1 the rule takes the face the blocks were held up by wherever it overlaps no
+//   deeper than its window (twice the slop: the corner rests up to the slop deep and the edge
+//   stands up to the slop proud; tests/test_flush_neighbours.cpp).
+// - Until model revision 2026-12-05.2, 12 of the 18 runs of the 3 x 1.5 m slider on 0.1 m cubes
+//   (450 times a cube) failed, with the impact groups switched off as well (an environment switch,
+//   not kept): Gauss-Seidel sweeps converge slowest at a large mass ratio, and two sweeps a
+//   substep left the slider sinking into the cube it had just reached. Six sweeps for every
+//   manifold mended them (a probe, not kept); since .2 the manifolds of a block beside one at
+//   least 30 times heavier get 8 more sweeps a substep (forward/substep/converge_heavy.hpp): 0 off.
+TEST(JointCrossingFreeRow, SlidersArrivingOnARowOfCubesAtTwoMillisecondsSubstep) {
   int runs = 0;
-  const std::vector<std::string> off = cube_rows_at(0.002, 4, &runs, 0.0, 50.0);
-  EXPECT_EQ(runs, 54);
-  std::printf("[measured] %d sliders up to 50 times a cube arriving on rows of cubes at 2 ms x 4, substep: %zu off\n",
-              runs, off.size());
+  const std::vector<std::string> off = cube_rows_at(0.002, 4, &runs);
+  EXPECT_EQ(runs, 72);
+  std::printf("[measured] %d sliders arriving on rows of cubes at 2 ms x 4, substep: %zu off\n", runs, off.size());
   for (const std::string& o : off) ADD_FAILURE() << o;
 }
 
-// KNOWN DEFECT: the cube-row class at 2 ms x 4 with the slider 450 times a cube (3 x 1.5 m on
-// 0.1 m cubes, 18 runs) and at 5 ms x 4 (72 runs). At revision 2026-12-04.2: 21 of 72 off at 2 ms
-// x 4 (13 of these 18) and 28 at 5 ms x 4; at 2026-12-05.1: 12 of the 18 at 2 ms, 28 of 72 at 5 ms. Through
-// `ddafit simulate` on the same class laid out by a probe script (not kept), at .2: 22 off at 2 ms
-// x 4 (33 at .1; 12 at 2026-12-05.1, all 3 x 1.5 m on 0.1 m cubes), 27 at 5 ms x 4 (31; 27 at
-// 2026-12-05.1, whose "Proud edges" window changed none of the 3 x 1.5 m runs) and 28 at 10 ms x 3
-// (37), and as many with the impact groups switched off (22 at 2 ms, 30 at 10 ms; an environment
-// switch, not kept), so what is left is the sweeps'. The slider outweighs a cube 450 times;
-// Gauss-Seidel sweeps converge slowest there. With six velocity sweeps per substep instead of two
-// (an environment switch, not kept) none of the 18 at 2 ms is off; with sixteen, 8 of the 72 at
-// 5 ms, all the 450-times slider (docs/theory.md §13, "Limits of the substep solver").
-TEST(JointCrossingFreeRow, DISABLED_SlidersArrivingOnARowOfCubesAtCoarserStepsSubstep) {
+// KNOWN DEFECT: the cube-row class at 5 ms x 4 (72 runs): 12 off at model revision 2026-12-05.2
+// (28 at .12.04.2 and .12.05.1), the 3 x 1.5 m slider on 0.1 m cubes (450 times a cube) and the
+// 1 x 0.5 m one (50 times), 2-59 % off Eq. 4 with rows driven 0.2-15 m. More sweeps beside the
+// heavy slider mend more (converge_heavy.hpp: 16 sweeps, 7 off; 32, 2 off) at a cost on Vajont's
+// meshes (32 sweeps: section VII's first 10 s 23 % slower). Through `ddafit simulate` on the same
+// class laid out by a probe script (not kept): at 2026-12-04.2, 27 off at 5 ms x 4 and 28 at
+// 10 ms x 3 (Vajont's step), and as many with the impact groups switched off (an environment
+// switch, not kept), so what is left is the sweeps' (docs/theory.md §13, "Limits of the substep
+// solver").
+TEST(JointCrossingFreeRow, DISABLED_SlidersArrivingOnARowOfCubesAtFiveMillisecondsSubstep) {
   int runs = 0;
-  std::vector<std::string> off = cube_rows_at(0.002, 4, &runs, 50.0);
-  const std::vector<std::string> at_5ms = cube_rows_at(0.005, 4, &runs);
-  off.insert(off.end(), at_5ms.begin(), at_5ms.end());
-  EXPECT_EQ(runs, 90);
-  std::printf("[measured] %d sliders arriving on rows of cubes at 2 ms x 4 (450 times a cube) and 5 ms x 4, substep: %zu off\n",
-              runs, off.size());
+  const std::vector<std::string> off = cube_rows_at(0.005, 4, &runs);
+  EXPECT_EQ(runs, 72);
+  std::printf("[measured] %d sliders arriving on rows of cubes at 5 ms x 4, substep: %zu off\n", runs, off.size());
   for (const std::string& o : off) ADD_FAILURE() << o;
 }
 

@@ -57,6 +57,9 @@ struct SweepState {
   // Built when first needed in a step and kept for its substeps and its position correction
   // (the manifolds do not change within a step); reset with `deep` at the step's start.
   std::optional<BlockManifolds> of_block;
+  // The manifolds of blocks beside a much heavier one (converge_heavy.hpp), built when first
+  // needed in a step; reset with of_block.
+  std::optional<std::vector<int>> heavy;
   // Per block: substeps left in which its manifolds are held to a share of the impact margins
   // after a group solved for an impact took it in, or a weight-bearing joint of it was struck
   // (converge_impacts.cpp: kSettleShare, mark_struck). Kept

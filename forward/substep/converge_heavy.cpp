@@ -1,0 +1,41 @@
+#include "forward/substep/converge_heavy.hpp"
+
+namespace ddafit {
+
+const std::vector<int>& heavy_neighbourhood(const std::vector<ContactManifold>& manifolds,
+                                            const HeavyNeighbours& settings, SweepState& st) {
+  if (st.heavy) return *st.heavy;
+  st.heavy.emplace();
+  std::vector<int>& list = *st.heavy;
+  if (settings.sweeps <= 0 || settings.mass_ratio <= 0.0) return list;
+  const std::vector<std::array<int, 2>>& pairs = pair_blocks(manifolds, st);
+  // A block is light when a free neighbour's mass is at least mass_ratio times its own, that
+  // is when its inverse mass is at least mass_ratio times the neighbour's.
+  std::vector<char> light(st.masses.size(), 0);
+  bool any = false;
+  for (const auto& [a, b] : pairs) {
+    const BlockMass& ma = st.masses[a];
+    const BlockMass& mb = st.masses[b];
+    if (!ma.moves || !mb.moves) continue;
+    if (ma.inverse_mass >= settings.mass_ratio * mb.inverse_mass) light[a] = 1, any = true;
+    if (mb.inverse_mass >= settings.mass_ratio * ma.inverse_mass) light[b] = 1, any = true;
+  }
+  if (!any) return list;
+  for (int k = 0; k < static_cast<int>(pairs.size()); ++k) {
+    const auto [a, b] = pairs[k];
+    if ((light[a] && st.masses[a].moves) || (light[b] && st.masses[b].moves)) list.push_back(k);
+  }
+  return list;
+}
+
+long converge_heavy(std::vector<ContactManifold>& manifolds, const SweepSettings& relax,
+                    const HeavyNeighbours& settings, SweepState& st) {
+  const std::vector<int>& list = heavy_neighbourhood(manifolds, settings, st);
+  if (list.empty()) return 0;
+  const double inv_h = 1.0 / relax.h;
+  for (int sweep = 0; sweep < settings.sweeps; ++sweep)
+    for (const int k : list) solve_manifold(manifolds[k], st.deep[k], relax, inv_h, st);
+  return static_cast<long>(list.size()) * settings.sweeps;
+}
+
+}  // namespace ddafit
