@@ -2,9 +2,9 @@
 // where a light block carries or meets a much heavier one. Gauss-Seidel converges slowest at
 // a large mass ratio: solving the joint between a slider and a cube under it stops the light
 // cube, not the slider, and the cube's own support then hands the slider only the cube's share
-// of momentum per sweep (the error falls by about m_light / m_heavy a sweep). Two sweeps are
-// enough for the warm-started joints of blocks of similar size, and the thousands of those in a
-// landslide get no more; the few manifolds of a light block beside a heavy one get
+// of momentum per sweep (a sweep removes about m_light / m_heavy of the error). Two sweeps are
+// enough for the warm-started joints of blocks of similar size, and the thousands of those in
+// a landslide get no more; the few manifolds of a light block beside a heavy one get
 // kHeavySweeps more, in order, on one thread (as converge_deep's).
 //
 // Measured on the cube-row class (tests/test_free_row.cpp: a 3 x 1.5 m slider, 450 times a
