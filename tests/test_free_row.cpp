@@ -344,8 +344,8 @@ TEST(JointCrossingFreeRow, SlidersArrivingOnARowOfCubesAtTwoMillisecondsSubstep)
 // meshes (32 sweeps: section VII's first 10 s 23 % slower). Through `ddafit simulate` on the same
 // class laid out by a probe script (not kept): at 2026-12-04.2, 27 off at 5 ms x 4 and 28 at
 // 10 ms x 3 (Vajont's step), and as many with the impact groups switched off (an environment
-// switch, not kept), so what is left is the sweeps' (docs/theory.md §13, "Limits of the substep
-// solver").
+// switch, not kept), so what is left is the sweeps'; at .12.05.2, 10 at 5 ms x 4 and 10 at 10 ms
+// x 3, every one the 450-times slider (docs/theory.md §13, "Limits of the substep solver").
 TEST(JointCrossingFreeRow, DISABLED_SlidersArrivingOnARowOfCubesAtFiveMillisecondsSubstep) {
   int runs = 0;
   const std::vector<std::string> off = cube_rows_at(0.005, 4, &runs);
