@@ -20,22 +20,16 @@ const std::vector<int>& heavy_neighbourhood(const std::vector<ContactManifold>& 
     if (ma.inverse_mass >= settings.mass_ratio * mb.inverse_mass) light[a] = 1, any = true;
     if (mb.inverse_mass >= settings.mass_ratio * ma.inverse_mass) light[b] = 1, any = true;
   }
-  if (!any) return list;
-  for (int k = 0; k < static_cast<int>(pairs.size()); ++k) {
-    const auto [a, b] = pairs[k];
-    if ((light[a] && st.masses[a].moves) || (light[b] && st.masses[b].moves)) list.push_back(k);
-  }
+  if (any) list = manifolds_of_blocks(pairs, light, st.masses);
   return list;
 }
 
-long converge_heavy(std::vector<ContactManifold>& manifolds, const SweepSettings& relax,
+void converge_heavy(std::vector<ContactManifold>& manifolds, const SweepSettings& relax,
                     const HeavyNeighbours& settings, SweepState& st) {
   const std::vector<int>& list = heavy_neighbourhood(manifolds, settings, st);
-  if (list.empty()) return 0;
   const double inv_h = 1.0 / relax.h;
-  for (int sweep = 0; sweep < settings.sweeps; ++sweep)
+  for (int sweep = 0; sweep < settings.sweeps && !list.empty(); ++sweep)
     for (const int k : list) solve_manifold(manifolds[k], st.deep[k], relax, inv_h, st);
-  return static_cast<long>(list.size()) * settings.sweeps;
 }
 
 }  // namespace ddafit

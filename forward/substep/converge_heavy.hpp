@@ -32,9 +32,8 @@ struct HeavyNeighbours {
 const std::vector<int>& heavy_neighbourhood(const std::vector<ContactManifold>& manifolds,
                                             const HeavyNeighbours& settings, SweepState& state);
 
-// settings.sweeps relax sweeps over heavy_neighbourhood's manifolds. Returns the manifolds
-// solved (list length times sweeps).
-long converge_heavy(std::vector<ContactManifold>& manifolds, const SweepSettings& relax,
+// settings.sweeps relax sweeps over heavy_neighbourhood's manifolds.
+void converge_heavy(std::vector<ContactManifold>& manifolds, const SweepSettings& relax,
                     const HeavyNeighbours& settings, SweepState& state);
 
 }  // namespace ddafit

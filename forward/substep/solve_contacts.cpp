@@ -158,16 +158,21 @@ std::vector<int> deep_neighbourhood(const std::vector<ContactManifold>& manifold
   bool any = false;
   for (int k = 0; k < static_cast<int>(st.deep.size()); ++k)
     if (st.deep[k]) involved[pairs[k][0]] = involved[pairs[k][1]] = 1, any = true;
-  std::vector<int> list;
-  if (!any) return list;
-  for (int k = 0; k < static_cast<int>(pairs.size()); ++k) {
-    const auto [a, b] = pairs[k];
-    if ((involved[a] && st.masses[a].moves) || (involved[b] && st.masses[b].moves)) list.push_back(k);
-  }
-  return list;
+  if (!any) return {};
+  return manifolds_of_blocks(pairs, involved, st.masses);
 }
 
 }  // namespace
+
+std::vector<int> manifolds_of_blocks(const std::vector<std::array<int, 2>>& pairs, const std::vector<char>& marked,
+                                     const std::vector<BlockMass>& masses) {
+  std::vector<int> list;
+  for (int k = 0; k < static_cast<int>(pairs.size()); ++k) {
+    const auto [a, b] = pairs[k];
+    if ((marked[a] && masses[a].moves) || (marked[b] && masses[b].moves)) list.push_back(k);
+  }
+  return list;
+}
 
 BlockManifolds::BlockManifolds(const std::vector<ContactManifold>& manifolds, size_t blocks) : first(blocks + 1, 0) {
   for (const ContactManifold& m : manifolds) ++first[m.block_a + 1], ++first[m.block_b + 1];

@@ -74,6 +74,11 @@ struct SweepState {
 // st.pair_blocks, filled from `manifolds` when prepare_contacts has not (a state built by hand).
 const std::vector<std::array<int, 2>>& pair_blocks(const std::vector<ContactManifold>& manifolds, SweepState& st);
 
+// The manifolds, in order, with a moving block that `marked` (per block) flags: the
+// neighbourhoods of converge_deep, correct_positions and converge_heavy.
+std::vector<int> manifolds_of_blocks(const std::vector<std::array<int, 2>>& pairs, const std::vector<char>& marked,
+                                     const std::vector<BlockMass>& masses);
+
 // st.of_block, built from `manifolds` if this step has not built it yet.
 const BlockManifolds& block_manifolds(const std::vector<ContactManifold>& manifolds, SweepState& st);
 
