@@ -94,11 +94,13 @@ struct SolverReport {
   long steps_on_one_thread = 0;   // substep solver: steps the thread governor ran on one thread (forward/thread_governor.hpp)
   // Substep solver, impact groups (forward/substep/converge_impacts.hpp): groups solved
   // directly, groups past 160 points (an impact's solved in pieces, a settling one's left to the
-  // sweeps), the pieces' solves, solves undone (energy).
+  // sweeps), the pieces' solves, solves undone (energy), and the solves (groups' and pieces')
+  // that solved friction with the normals beside a heavy block (solve_group_friction.hpp).
   long impact_groups = 0;
   long impact_groups_too_large = 0;
   long impact_group_pieces = 0;
   long impact_groups_refused = 0;
+  long impact_groups_with_friction = 0;
 };
 
 // Interrupted: the caller asked the run to stop (SimulationHooks::should_stop) before the

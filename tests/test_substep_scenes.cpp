@@ -251,19 +251,20 @@ TEST_P(SubstepScenesSolver, HeavyOnLightStaysPut) {
 }
 
 // The class of the scene above: a 1 x 0.5 m block 30, 100, 450 and 1000 times as heavy as each
-// of the five 0.2 m cubes under it, on a floor at 0, 10 and 20 deg (every joint at 30 deg
-// friction), at the default 1 ms x 4, at 5 ms x 4 and at Vajont's 10 ms x 3, for 1 s; the heavy
-// block starts `drop` m above the cubes. Returns the largest move of a cube (36 runs), its run,
-// and each run's largest cube move.
+// of the `cubes` cubes under it (five of 0.2 m, ten of 0.1 m), on a floor at 0, 10 and 20 deg
+// (every joint at 30 deg friction), at the default 1 ms x 4, at 5 ms x 4 and at Vajont's
+// 10 ms x 3, for 1 s; the heavy block starts `drop` m above the cubes. Returns the largest move
+// of a cube (36 runs), its run, and each run's largest cube move.
 struct HeavyOnCubes {
   double worst = 0.0;
   std::string label;
   std::vector<double> moves;
   int over(double bound) const { return static_cast<int>(std::count_if(moves.begin(), moves.end(), [&](double x) { return x >= bound; })); }
 };
-HeavyOnCubes heavy_blocks_on_cubes(Integrator integrator, double drop) {
+HeavyOnCubes heavy_blocks_on_cubes(Integrator integrator, double drop, int cubes = 5) {
   constexpr double kMaxOverlap = 1e-2;  // of the smaller block (this file's penetration limit)
-  constexpr double kCube = 0.2, kLength = 1.0, kHeight = 0.5;
+  constexpr double kLength = 1.0, kHeight = 0.5;
+  const double kCube = kLength / cubes;
   HeavyOnCubes result;
   int runs = 0;
   for (const double ratio : {30.0, 100.0, 450.0, 1000.0})
@@ -278,7 +279,7 @@ HeavyOnCubes heavy_blocks_on_cubes(Integrator integrator, double drop) {
         const double a = slope * kDegree;
         const Vec2 along(std::cos(a), std::sin(a)), up(-std::sin(a), std::cos(a));
         s.blocks.push_back(block("floor", box(-1.0 * along - up, along, up, 3.0, 1.0), true));
-        for (int i = 0; i < 5; ++i) {
+        for (int i = 0; i < cubes; ++i) {
           const std::string name = "cube" + std::to_string(i);
           s.blocks.push_back(block(name, box(i * kCube * along, along, up, kCube, kCube), false));
           s.measure.push_back({name, i * kCube * along + 0.5 * kCube * (along + up)});
@@ -286,8 +287,8 @@ HeavyOnCubes heavy_blocks_on_cubes(Integrator integrator, double drop) {
         s.blocks.push_back(block("heavy", box((kCube + drop) * up, along, up, kLength, kHeight), false, 1));
         const SimulationResult r = simulate(s);
         char label[200];
-        std::snprintf(label, sizeof label, "%s: heavy %g times a cube, dropped %g m, slope %g deg, %g ms x %d",
-                      name_of(integrator).c_str(), ratio, drop, slope, step * 1e3, substeps);
+        std::snprintf(label, sizeof label, "%s: heavy %g times each of %d cubes, dropped %g m, slope %g deg, %g ms x %d",
+                      name_of(integrator).c_str(), ratio, cubes, drop, slope, step * 1e3, substeps);
         ++runs;
         EXPECT_EQ(r.summary.status, RunStatus::Completed) << label << ": " << r.summary.message;
         double largest = 0.0;
@@ -312,35 +313,50 @@ TEST(SubstepScenesHeavy, HeavyBlocksRestOnRowsOfLightCubesAtAnyStepAndSlopeSubst
             << h.label << ")\n";
 }
 
-// Dropped 0.2 m (landing at 2 m/s; on the slopes its direction is 10-20 deg off the floor's
-// normal, inside the 30 deg friction cone, so a rigid stack stops without slipping): no cube may
-// move more than 1 cm (5 % of its size). The implicit solver: 4.2 mm worst (1000 times a cube,
-// 20 deg, 1 ms), measured 2026-12-05.
-constexpr double kLandingCubeMovement = 1e-2;  // m
+// Dropped 0.05 and 0.2 m (landing at 1 and 2 m/s; on the slopes its direction is 10-20 deg off
+// the floor's normal, inside the 30 deg friction cone, so a rigid stack stops without slipping),
+// on five 0.2 m and ten 0.1 m cubes: no cube may move more than 5 % of its size. The implicit
+// solver, dropped 0.2 m: 4.2 mm worst on five cubes (1000 times a cube, 20 deg, 1 ms), measured
+// 2026-12-05.
+constexpr double kLandingShareOfCube = 0.05;
 TEST(SubstepScenesHeavy, HeavyBlocksLandOnRowsOfLightCubesImplicit) {
-  const HeavyOnCubes h = heavy_blocks_on_cubes(Integrator::Implicit, 0.2);
-  EXPECT_LT(h.worst, kLandingCubeMovement) << h.label;
-  std::cout << "[measured] heavy blocks landing on rows of light cubes: largest cube move " << h.worst << " m ("
-            << h.label << ")\n";
+  for (const int cubes : {5, 10}) {
+    const HeavyOnCubes h = heavy_blocks_on_cubes(Integrator::Implicit, 0.2, cubes);
+    EXPECT_LT(h.worst, kLandingShareOfCube / cubes) << h.label;
+    std::cout << "[measured] heavy blocks landing on rows of light cubes: largest cube move " << h.worst << " m ("
+              << h.label << ")\n";
+  }
 }
 
-// KNOWN DEFECT (found 2026-12-05 by this sweep): at revision .12.05.2 the substep solver moved
-// cubes up to 0.53 m (100 times a cube, 20 deg, 1 ms x 4), and at 10 deg 0.25 m (30 times, 1 ms
-// x 4): the heavy block, landing at 1.99 m/s, left at 1.37 m/s upwards and threw the cubes out.
-// The impact group of the landing's first substep set it settling, the group of the next stopped
-// it, and as a settling block it was not marked struck, so the next warm start handed on the whole
-// impulse that had stopped it. Revision .12.05.3 marks it struck again (converge_impacts.cpp,
-// struck_again): the bounce is gone, but the landed stacks still slip at 10-20 deg at coarse steps
-// and high ratios (up to 0.14 m at 1000 times, 20 deg, 10 ms x 3), the heavy block sliding on at
-// 0.6 m/s after its landing (docs/theory.md §13). The implicit solver keeps every cube within
-// 4.2 mm (above).
-TEST(SubstepScenesHeavy, DISABLED_HeavyBlocksLandOnRowsOfLightCubesSubstep) {
-  const HeavyOnCubes h = heavy_blocks_on_cubes(Integrator::Substep, 0.2);
-  EXPECT_LT(h.worst, kLandingCubeMovement) << h.label;
-  std::cout << "[measured] heavy blocks landing on rows of light cubes: largest cube move " << h.worst << " m ("
-            << h.label << "), " << h.over(kLandingCubeMovement) << " of 36 runs at or over "
-            << kLandingCubeMovement << " m\n";
+// Substep solver. Found 2026-12-05 by this sweep (five cubes, 0.2 m): at revision .12.05.2 cubes
+// moved up to 0.53 m (100 times a cube, 20 deg, 1 ms x 4). The heavy block, landing at 1.99 m/s,
+// left at 1.37 m/s upwards: the impact group of the landing's first substep set it settling, the
+// group of the next stopped it, and as a settling block it was not marked struck, so the next
+// warm start handed on the whole impulse that had stopped it (mended at .12.05.3: struck_again,
+// converge_impacts.cpp; 16 of 36 runs still over 1 cm, worst 0.14 m). What was left was the
+// landing's friction: the heavy block slid on down the slope at the tangential speed it landed
+// with (0.6 m/s at 1000 times, 20 deg), the group's one sweep handing it a thousandth of the
+// cubes' friction; since .12.05.4 a group with a heavy block beside a light one solves its
+// friction with its normals (solve_group_friction.hpp). Measured 2026-12-05 at .12.05.4, five
+// cubes: 7.5 mm worst (dropped 0.2 m, 30 times, 10 deg, 1 ms x 4) and 1.4 mm (0.05 m), none of
+// the 72 runs over 1 cm.
+void expect_landings_within(int cubes) {
+  for (const double drop : {0.05, 0.2}) {
+    const HeavyOnCubes h = heavy_blocks_on_cubes(Integrator::Substep, drop, cubes);
+    const double bound = kLandingShareOfCube / cubes;
+    EXPECT_LT(h.worst, bound) << h.label;
+    std::cout << "[measured] heavy blocks landing on rows of light cubes: largest cube move " << h.worst << " m ("
+              << h.label << "), " << h.over(bound) << " of 36 runs at or over " << bound << " m\n";
+  }
 }
+TEST(SubstepScenesHeavy, HeavyBlocksLandOnRowsOfLightCubesSubstep) { expect_landings_within(5); }
+
+// KNOWN DEFECT (found 2026-12-05 at .12.05.4): on ten 0.1 m cubes 1 of the 72 runs is over its
+// bound (5 mm): 450 times a cube, dropped 0.05 m, 20 deg, 10 ms x 3, where the landing knocks the
+// downslope end cube out at 0.16 m/s and it slides 7.3 mm, decelerating as a free cube on the
+// floor (1.85 m/s^2; Coulomb 1.96): so it is no longer under load. The other nine cubes stay
+// within 1 mm, and the other 71 runs within 4.1 mm. Not traced further.
+TEST(SubstepScenesHeavy, DISABLED_HeavyBlocksLandOnRowsOfTenLightCubesSubstep) { expect_landings_within(10); }
 
 INSTANTIATE_TEST_SUITE_P(SubstepScenes, SubstepScenesSolver,
                          ::testing::Values(Integrator::Implicit, Integrator::Substep),

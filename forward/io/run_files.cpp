@@ -107,6 +107,7 @@ std::string summary_json_text(const std::string& scene_path, const SimulationRes
     j["solver"]["steps_on_one_thread"] = solver.steps_on_one_thread;
     j["solver"]["impact_groups"] = solver.impact_groups;
     j["solver"]["impact_groups_too_large"] = solver.impact_groups_too_large;
+    j["solver"]["impact_groups_with_friction"] = solver.impact_groups_with_friction;
     j["solver"]["impact_group_pieces"] = solver.impact_group_pieces;
     j["solver"]["impact_groups_refused"] = solver.impact_groups_refused;
   }

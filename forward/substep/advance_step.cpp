@@ -166,12 +166,14 @@ void run_one_substep(SubstepContext& w, const SweepSettings& sweep, const Vec2& 
     impacts.spent = std::max(kImpactSpentRatio * scale, kImpactSpentRestShare * w.scene.rest_speed);
     impacts.settle_substeps = kImpactSettleSteps * w.options.substeps;
     if (g > 0.0) impacts.down = gravity / g;
+    impacts.heavy_mass_ratio = kHeavyMassRatio;
     const ImpactCounts counts =
         w.settling ? ImpactCounts{} : converge_impacts(w.contacts.manifolds, relax, impacts, w.state);
     w.report.impact_groups += counts.solved;
     w.report.impact_groups_too_large += counts.too_large;
     w.report.impact_group_pieces += counts.pieces;
     w.report.impact_groups_refused += counts.refused;
+    w.report.impact_groups_with_friction += counts.with_friction;
     flag_closing_deep(w.contacts.manifolds, sweep.h, w.state);
     converge_deep(w.contacts.manifolds, relax, kDeepIterations, w.state, sweep.h);
     push_out_overlaps(w.contacts.manifolds, w.colours, sweep, w.state);

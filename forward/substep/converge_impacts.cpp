@@ -118,11 +118,13 @@ void converge_group(std::vector<ContactManifold>& manifolds, const BlockManifold
       ++counts.too_large;
       return;
     }
-    if (!solve_impact_group(manifolds, list, relax, settings.closing, st)) {
+    const GroupSolve solve = solve_impact_group(manifolds, list, relax, settings.closing, settings.heavy_mass_ratio, st);
+    if (solve == GroupSolve::Refused) {
       ++counts.refused;
       return;
     }
     ++counts.solved;
+    if (solve == GroupSolve::NormalsAndFriction) ++counts.with_friction;
     bool grew = false;
     const size_t listed_now = list.size();
     for (size_t i = 0; i < listed_now; ++i)
@@ -265,6 +267,7 @@ void converge_pieces(std::vector<ContactManifold>& manifolds, const BlockManifol
     converge_group(manifolds, of_block, relax, settings, st, involved, listed, list, piece);
     counts.pieces += piece.solved;
     counts.refused += piece.refused;
+    counts.with_friction += piece.with_friction;
     if (piece.solved > 0) settle_after_impact(manifolds, list, settings, st);
     for (const int j : list) {
       listed[j] = 0;

@@ -49,6 +49,10 @@ struct ImpactConvergence {
   // carries weight (its normal within 45 deg of `down`) settles as after an impact even when
   // the two sweeps took the blow (converge_impacts.cpp, mark_struck; model revision 2026-11-28.7).
   Vec2 down = Vec2::Zero();
+  // A group with a manifold between two moving blocks, one at least this many times the other's
+  // mass, solves its friction impulses with its normal ones (solve_group_friction.hpp; model
+  // revision 2026-12-05.4); 0: never. advance_step.cpp gives converge_heavy's ratio.
+  double heavy_mass_ratio = 0.0;
 };
 
 struct ImpactCounts {
@@ -56,6 +60,7 @@ struct ImpactCounts {
   long too_large = 0;  // groups past max_points: settling ones left to the sweeps, impacts in pieces
   long pieces = 0;     // solves of the pieces of those groups
   long refused = 0;    // solves undone: they would have raised the group's kinetic energy
+  long with_friction = 0;  // of `solved` (pieces' solves too), those that solved friction with the normals
 };
 
 // Solves the impact groups of this substep in place (velocities and impulses of `state`).

@@ -5,18 +5,13 @@
 #include <cmath>
 
 #include "forward/contact/contact_law.hpp"
+#include "forward/substep/solve_group_friction.hpp"
 
 namespace ddafit {
 namespace {
 
 // The largest rounds of the active set (points joining or leaving contact) per solve.
 constexpr int kActiveSetRounds = 24;
-// A share added to the Delassus matrix's diagonal: two points on one face and a block touching
-// on several faces make the matrix singular, and the term picks the least-norm split. At 1e-6
-// the floor's two points under a row took opposite impulses of 1e4 N s/m (a couple the
-// rounding asked for) and the active set cycled; 1e-3 and 1e-2 soften the contacts enough
-// to leave 15 % and 21 % rebounds (tests/test_impact_rebound.cpp); 1e-4 holds them.
-constexpr double kRegularisation = 1e-4;
 // Inside a group's solve a point joins the contacts once it closes faster than this share of
 // the closing speed that starts a group: the group is solved to within it, not to the trigger's
 // margin (at the margin itself a dropped block left a stack of ten sinking at 0.26 m/s).
@@ -27,6 +22,27 @@ constexpr double kSolveShare = 1e-2;
 // at up to 0.3 % on Vajont section I), plus half the group's mass times closing^2.
 constexpr double kEnergyShare = 1e-2;
 
+// A group solves its friction with its normals (solve_group_friction.hpp) up to this many
+// points (a dense programme over twice as many impulses). Its cost on Vajont section I degraded
+// (substep, one thread): the whole wall 9.4 s without it, 9.3 s with it up to 64 points (the
+// groups beside a heavy block there are mostly larger), 17.7 s at any size. A heavy block on
+// five light cubes is 12-28 points.
+constexpr int kFrictionMaxPoints = 64;
+
+// Whether a manifold of the list joins two moving blocks one of which is at least `ratio`
+// times the other's mass (never when ratio is 0).
+bool has_heavy_pair(const std::vector<ContactManifold>& manifolds, const std::vector<int>& list, double ratio,
+                    const SweepState& st) {
+  if (ratio <= 0.0) return false;
+  for (const int k : list) {
+    const BlockMass& a = st.masses[manifolds[k].block_a];
+    const BlockMass& b = st.masses[manifolds[k].block_b];
+    if (a.moves && b.moves && (a.inverse_mass >= ratio * b.inverse_mass || b.inverse_mass >= ratio * a.inverse_mass))
+      return true;
+  }
+  return false;
+}
+
 double kinetic_energy(const std::vector<int>& blocks, const std::vector<Vec3>& velocity, const SweepState& st) {
   double e = 0.0;
   for (const int b : blocks) {
@@ -36,10 +52,6 @@ double kinetic_energy(const std::vector<int>& blocks, const std::vector<Vec3>& v
   }
   return 0.5 * e;
 }
-
-struct GroupPoint {
-  int manifold, point;
-};
 
 // A point's row of the contact Jacobian on one block: (n, r x n), negated on block a, so that
 // row . (v, w) summed over both blocks is the point's normal velocity (normal_rate).
@@ -117,7 +129,7 @@ void solve_normal_impulses(const Eigen::MatrixXd& A, const Eigen::VectorXd& r0, 
           if (!active[j]) known += A(s[x], j) * d[j];
         rhs[x] = -known;
         for (int y = 0; y < m; ++y) a(x, y) = A(s[x], s[y]);
-        a(x, x) *= 1.0 + kRegularisation;
+        a(x, x) *= 1.0 + kDelassusRegularisation;
       }
       const Eigen::VectorXd ds = a.ldlt().solve(rhs);
       for (int x = 0; x < m; ++x) d[s[x]] = ds[x];
@@ -143,11 +155,12 @@ double impact_residual(const ContactManifold& m, const ContactPoint& p, const Sw
 }
 
 // The group's normal impulses solved together, the friction impulses held under their new
-// Coulomb caps, then one sweep of the group so that friction settles with them (without it the
-// walled row still threw the striker back at 18 %). Returns false, with nothing changed, when
-// the answer would leave the group more kinetic energy than kEnergyShare allows.
-bool solve_impact_group(std::vector<ContactManifold>& manifolds, const std::vector<int>& list,
-                        const SweepSettings& relax, double closing, SweepState& st) {
+// Coulomb caps (or, in a group with a heavy block beside a light one, solved with the normals:
+// solve_group_friction.hpp), then one sweep of the group so that friction settles with them
+// (without it the walled row still threw the striker back at 18 %). Refused, with nothing
+// changed, when the answer would leave the group more kinetic energy than kEnergyShare allows.
+GroupSolve solve_impact_group(std::vector<ContactManifold>& manifolds, const std::vector<int>& list,
+                              const SweepSettings& relax, double closing, double heavy_mass_ratio, SweepState& st) {
   const double h = relax.h;
   std::vector<GroupPoint> points;
   std::vector<int> blocks;
@@ -175,12 +188,16 @@ bool solve_impact_group(std::vector<ContactManifold>& manifolds, const std::vect
   const double before = std::max(kinetic_energy(blocks, st.velocity, st), kinetic_energy(blocks, st.free_velocity, st));
   double mass = 0.0;
   for (const int b : blocks) mass += 1.0 / st.masses[b].inverse_mass;
+  Eigen::VectorXd dn, dt;
+  const bool with_friction = n <= kFrictionMaxPoints && has_heavy_pair(manifolds, list, heavy_mass_ratio, st) &&
+                             solve_friction_with_normals(manifolds, points, blocks, st, r0, lambda0, tangent0, floor,
+                                                         kSolveShare * closing, d, dn, dt);
   for (int i = 0; i < n; ++i) {
     ContactManifold& m = manifolds[points[i].manifold];
     ContactPoint& p = m.points[points[i].point];
-    const double normal = std::max(lambda0[i] + d[i], floor[i]);
+    const double normal = std::max(lambda0[i] + (with_friction ? dn[i] : d[i]), floor[i]);
     const double cap = coulomb_cap(m.friction, normal, p.impulse.cohesion);
-    const double tangent = std::clamp(p.impulse.tangent, -cap, cap);
+    const double tangent = std::clamp(with_friction ? tangent0[i] + dt[i] : p.impulse.tangent, -cap, cap);
     apply_impulse(st.velocity[m.block_a], st.velocity[m.block_b], st.masses[m.block_a], st.masses[m.block_b], p,
                   (normal - p.impulse.normal) * m.normal + (tangent - p.impulse.tangent) * m.tangent);
     p.impulse.normal = normal;
@@ -189,14 +206,15 @@ bool solve_impact_group(std::vector<ContactManifold>& manifolds, const std::vect
   char ignored = 0;
   for (const int k : list) solve_manifold(manifolds[k], ignored, relax, 1.0 / h, st);
   const double allowance = kEnergyShare * before + 0.5 * mass * closing * closing;
-  if (kinetic_energy(blocks, st.velocity, st) <= before + allowance) return true;
+  if (kinetic_energy(blocks, st.velocity, st) <= before + allowance)
+    return with_friction ? GroupSolve::NormalsAndFriction : GroupSolve::Normals;
   for (size_t x = 0; x < blocks.size(); ++x) st.velocity[blocks[x]] = saved[x];
   for (int i = 0; i < n; ++i) {
     ContactPoint& p = manifolds[points[i].manifold].points[points[i].point];
     p.impulse.normal = lambda0[i];
     p.impulse.tangent = tangent0[i];
   }
-  return false;
+  return GroupSolve::Refused;
 }
 
 }  // namespace ddafit
