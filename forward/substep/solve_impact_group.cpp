@@ -155,9 +155,9 @@ double impact_residual(const ContactManifold& m, const ContactPoint& p, const Sw
 }
 
 // The group's normal impulses solved together, the friction impulses held under their new
-// Coulomb caps (or, in a group with a heavy block beside a light one, solved with the normals:
-// solve_group_friction.hpp), then one sweep of the group so that friction settles with them
-// (without it the walled row still threw the striker back at 18 %). Refused, with nothing
+// Coulomb caps, then one sweep of the group so that friction settles with them (without it the
+// walled row still threw the striker back at 18 %); or, in a group with a heavy block beside a
+// light one, friction solved with the normals (solve_group_friction.hpp) and no sweep. Refused, with nothing
 // changed, when the answer would leave the group more kinetic energy than kEnergyShare allows.
 GroupSolve solve_impact_group(std::vector<ContactManifold>& manifolds, const std::vector<int>& list,
                               const SweepSettings& relax, double closing, double heavy_mass_ratio, SweepState& st) {
@@ -203,8 +203,14 @@ GroupSolve solve_impact_group(std::vector<ContactManifold>& manifolds, const std
     p.impulse.normal = normal;
     p.impulse.tangent = tangent;
   }
+  // The sweep is skipped after a friction solve: it is Gauss-Seidel across the group's mass
+  // ratio again, and un-solves what the programme solved. On ten 0.1 m cubes under a block 450
+  // times as heavy (dropped 0.05 m, 20 deg, 10 ms x 3) it set the downslope end cube sliding
+  // out from under the block at 0.25 m/s (7.3 mm against 5 mm; model revision 2026-12-05.5),
+  // and Vajont section IV degraded overlapped by 1.34 % with it, 0.42 % without.
   char ignored = 0;
-  for (const int k : list) solve_manifold(manifolds[k], ignored, relax, 1.0 / h, st);
+  if (!with_friction)
+    for (const int k : list) solve_manifold(manifolds[k], ignored, relax, 1.0 / h, st);
   const double allowance = kEnergyShare * before + 0.5 * mass * closing * closing;
   if (kinetic_energy(blocks, st.velocity, st) <= before + allowance)
     return with_friction ? GroupSolve::NormalsAndFriction : GroupSolve::Normals;
