@@ -54,9 +54,9 @@ constexpr double kSlipShare = 3.0;
 // A block already settling is struck again (settle_after_impact) when its group's solve raised
 // a point's normal impulse beyond the warm start's by this many times the impact margin in its
 // velocity. A heavy block dropped 0.2 m on five light cubes on a 10 deg floor (30 times a cube,
-// 1 ms x 4) threw them 0.25 m without the rule and 7.5 mm with it; at 3 times the margin a block
-// dropped at 5 m/s onto a column of thirty came back at 24.6 % of its speed (13.9 % without the
-// rule, 12.7 % at 10 times); marking every impact group's blocks struck put a slow drop onto
+// 1 ms x 4) threw them 0.25 m without the rule and 7.5 mm with it; at 3 times the margin blocks
+// dropped at 2-10 m/s onto a column of thirty came back at up to 24.6 % of their speed (13.9 %
+// without the rule, 12.7 % at 10 times); marking every impact group's blocks struck put a slow drop onto
 // fifteen 0.25 m blocks at 33.8 % (bound 30 %; tests/test_impact_rebound.cpp).
 constexpr double kStruckAgainShare = 10.0;
 // A joint carries weight when its normal is within 45 deg of gravity (cos 45 deg).
