@@ -17,8 +17,8 @@ const std::vector<int>& heavy_neighbourhood(const std::vector<ContactManifold>& 
     const BlockMass& ma = st.masses[a];
     const BlockMass& mb = st.masses[b];
     if (!ma.moves || !mb.moves) continue;
-    if (ma.inverse_mass >= settings.mass_ratio * mb.inverse_mass) light[a] = 1, any = true;
-    if (mb.inverse_mass >= settings.mass_ratio * ma.inverse_mass) light[b] = 1, any = true;
+    if (much_lighter(ma, mb, settings.mass_ratio)) light[a] = 1, any = true;
+    if (much_lighter(mb, ma, settings.mass_ratio)) light[b] = 1, any = true;
   }
   if (any) list = manifolds_of_blocks(pairs, light, st.masses);
   return list;

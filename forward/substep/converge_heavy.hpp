@@ -27,6 +27,13 @@ struct HeavyNeighbours {
   int sweeps = 0;  // extra relax sweeps over those manifolds, per substep
 };
 
+// Whether block `light` is much lighter than its free neighbour `heavy`: the neighbour's mass
+// is at least `ratio` times its own, that is its inverse mass at least `ratio` times the
+// neighbour's. Also read by the impact groups (solve_impact_group.cpp, has_heavy_pair).
+inline bool much_lighter(const BlockMass& light, const BlockMass& heavy, double ratio) {
+  return light.inverse_mass >= ratio * heavy.inverse_mass;
+}
+
 // The manifolds of the light blocks (HeavyNeighbours::mass_ratio), in order; built once per
 // step (the manifolds and masses do not change within it) into state.heavy.
 const std::vector<int>& heavy_neighbourhood(const std::vector<ContactManifold>& manifolds,

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "forward/contact/contact_law.hpp"
+#include "forward/substep/converge_heavy.hpp"
 #include "forward/substep/solve_group_friction.hpp"
 
 namespace ddafit {
@@ -37,8 +38,7 @@ bool has_heavy_pair(const std::vector<ContactManifold>& manifolds, const std::ve
   for (const int k : list) {
     const BlockMass& a = st.masses[manifolds[k].block_a];
     const BlockMass& b = st.masses[manifolds[k].block_b];
-    if (a.moves && b.moves && (a.inverse_mass >= ratio * b.inverse_mass || b.inverse_mass >= ratio * a.inverse_mass))
-      return true;
+    if (a.moves && b.moves && (much_lighter(a, b, ratio) || much_lighter(b, a, ratio))) return true;
   }
   return false;
 }
@@ -157,8 +157,9 @@ double impact_residual(const ContactManifold& m, const ContactPoint& p, const Sw
 // The group's normal impulses solved together, the friction impulses held under their new
 // Coulomb caps, then one sweep of the group so that friction settles with them (without it the
 // walled row still threw the striker back at 18 %); or, in a group with a heavy block beside a
-// light one, friction solved with the normals (solve_group_friction.hpp) and no sweep. Refused, with nothing
-// changed, when the answer would leave the group more kinetic energy than kEnergyShare allows.
+// light one, friction solved with the normals (solve_group_friction.hpp) and no sweep. Refused,
+// with nothing changed, when the answer would leave the group more kinetic energy than
+// kEnergyShare allows.
 GroupSolve solve_impact_group(std::vector<ContactManifold>& manifolds, const std::vector<int>& list,
                               const SweepSettings& relax, double closing, double heavy_mass_ratio, SweepState& st) {
   const double h = relax.h;
