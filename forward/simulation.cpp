@@ -7,6 +7,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "forward/common/tall_sliders.hpp"
 #include "forward/perturb.hpp"
 #include "forward/run_record.hpp"
 #include "forward/step/run_implicit.hpp"
@@ -52,9 +53,27 @@ std::string time_step_warning(const Scene& scene, const BlockSystem& s) {
   return out.str();
 }
 
+// The implicit solver's known limit (i) (docs/theory.md): a tall block sliding from rest.
+// Above the largest r measured within 1 % (a rounding's worth above it: a slider built at exactly
+// r = 0.8 measures 0.8 to about 1e-15).
+bool is_tall(const TallSlider& slider) {
+  return slider.block >= 0 && slider.reach > kTallSliderReach * (1.0 + 1e-9);
+}
+
+std::string tall_slider_warning(const BlockSystem& s, const TallSlider& slider) {
+  std::ostringstream out;
+  out.precision(3);
+  out << "block '" << s.block_names[slider.block] << "' slides from rest on a face " << slider.slope
+      << " deg steep (friction " << slider.friction << " deg) with its base reaction at r = tan(phi) H / L = "
+      << slider.reach << " of its half-length ahead of its centre: the implicit solver takes such tall sliders "
+         "up to 70 % off seed Eq. 4 where they cross joints (docs/theory.md, known limits (i)); "
+         "time.integrator: substep keeps them within 1e-3";
+  return out.str();
+}
+
 // Integrator::Auto's rule (options.hpp, kAutoSubstepBlocks), and the reason given in
 // the summary.
-SolverReport choose_solver(const Scene& scene, const BlockSystem& s) {
+SolverReport choose_solver(const Scene& scene, const BlockSystem& s, const TallSlider& slider) {
   SolverReport report;
   if (scene.options.integrator != Integrator::Auto) {
     report.integrator = scene.options.integrator;
@@ -65,6 +84,15 @@ SolverReport choose_solver(const Scene& scene, const BlockSystem& s) {
   report.integrator = many ? Integrator::Substep : Integrator::Implicit;
   report.reason = "auto: " + std::to_string(s.free_block_count) + " free blocks, " + (many ? ">= " : "< ") +
                   std::to_string(kAutoSubstepBlocks) + " (docs/speed-accuracy.md)";
+  // Not the implicit solver for a scene of its known limit (i) (tall_slider_warning above).
+  if (!many && is_tall(slider)) {
+    report.integrator = Integrator::Substep;
+    std::ostringstream out;
+    out.precision(3);
+    out << report.reason << ", but block '" << s.block_names[slider.block] << "' is a tall slider (r = tan(phi) H / L = "
+        << slider.reach << "), which the implicit solver runs off seed Eq. 4 (docs/theory.md, known limits (i))";
+    report.reason = out.str();
+  }
   return report;
 }
 
@@ -128,7 +156,12 @@ SimulationResult simulate(const Scene& given, const SimulationHooks& hooks) {
 #endif
 
   BlockSystem system = build_block_system(scene);
-  summary.solver = choose_solver(scene, system);
+  // The tall slider, wherever the implicit solver may run (choose_solver, tall_slider_warning).
+  const Integrator asked = scene.options.integrator;
+  const bool implicit_possible = asked == Integrator::Implicit ||
+                                 (asked == Integrator::Auto && system.free_block_count < kAutoSubstepBlocks);
+  const TallSlider slider = implicit_possible ? tallest_slider(scene, system) : TallSlider{};
+  summary.solver = choose_solver(scene, system, slider);
   for (std::string& w : unused_setting_warnings(scene.options, summary.solver))
     summary.warnings.push_back(std::move(w));
   RunRecorder recorder(scene, hooks, result);
@@ -138,6 +171,7 @@ SimulationResult simulate(const Scene& given, const SimulationHooks& hooks) {
     run_substep(scene, system, recorder, summary);
   } else {
     if (std::string w = time_step_warning(scene, system); !w.empty()) summary.warnings.push_back(w);
+    if (is_tall(slider)) summary.warnings.push_back(tall_slider_warning(system, slider));
     run_implicit(scene, system, recorder, summary);
   }
   summary.profile.total = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();

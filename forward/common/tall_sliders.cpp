@@ -1,0 +1,69 @@
+#include "forward/common/tall_sliders.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "forward/contact/detect_contacts.hpp"
+
+namespace ddafit {
+namespace {
+
+// The contact stage's tolerances at t = 0, as both solvers set them (run_implicit.cpp,
+// run_substep.cpp): the separating-axis slop is this share of the largest move per step.
+constexpr double kSlopRatio = 1e-3;
+
+// Extents of block b along the unit vectors t and n.
+void extents(const BlockSystem& s, int b, const Vec2& t, const Vec2& n, double& along_t, double& along_n) {
+  const Block& block = s.blocks[b];
+  double t_lo = std::numeric_limits<double>::infinity(), t_hi = -t_lo, n_lo = t_lo, n_hi = -t_lo;
+  for (int k = 0; k < block.vertex_count; ++k) {
+    const Vec2& v = s.vertices[block.first_vertex + k];
+    t_lo = std::min(t_lo, v.dot(t)), t_hi = std::max(t_hi, v.dot(t));
+    n_lo = std::min(n_lo, v.dot(n)), n_hi = std::max(n_hi, v.dot(n));
+  }
+  along_t = t_hi - t_lo, along_n = n_hi - n_lo;
+}
+
+}  // namespace
+
+TallSlider tallest_slider(const Scene& scene, const BlockSystem& s) {
+  TallSlider out;
+  const double g = scene.gravity.norm();
+  if (g <= 0.0) return out;
+  const Vec2 up = -scene.gravity / g;
+  const double max_move = scene.options.max_displacement_ratio * s.half_model_size;
+  ContactDetection detection;
+  if (!prepare_detection(s, detection).empty()) return out;
+  detection.settings.margin = scene.options.search_distance_factor * max_move;
+  detection.settings.linear_slop = kSlopRatio * max_move;
+  detection.settings.gravity = scene.gravity;
+  ContactSet contacts;
+  if (!detect_contacts(s, detection, contacts).empty()) return out;
+  for (const ContactManifold& m : contacts.manifolds) {
+    const bool fa = s.blocks[m.block_a].fixed, fb = s.blocks[m.block_b].fixed;
+    if (fa == fb || m.interface < 0) continue;
+    bool touches = false;
+    for (int q = 0; q < m.point_count; ++q) touches |= m.points[q].separation <= detection.settings.linear_slop;
+    if (!touches) continue;
+    const Interface& face = s.interfaces[m.interface];
+    if (face.cohesion > 0.0 || face.tensile_strength > 0.0) continue;
+    // The face's normal into the free block (m.normal runs from a to b) and its inclination.
+    const int b = fa ? m.block_b : m.block_a;
+    const Vec2 n = fa ? m.normal : Vec2(-m.normal);
+    const double c = n.dot(up);
+    if (c <= 0.0) continue;  // not resting on it
+    const double mu = std::tan(face.friction_angle * M_PI / 180.0);
+    const double tan_slope = std::sqrt(std::max(0.0, 1.0 - c * c)) / c;
+    if (!(tan_slope > mu)) continue;  // held by its friction from rest
+    double length = 0.0, height = 0.0;
+    extents(s, b, Vec2(-n.y(), n.x()), n, length, height);
+    if (length <= 0.0) continue;
+    const double reach = mu * height / length;
+    if (reach > out.reach)
+      out = {b, reach, std::atan(tan_slope) * 180.0 / M_PI, face.friction_angle};
+  }
+  return out;
+}
+
+}  // namespace ddafit

@@ -1,0 +1,34 @@
+// Tall sliders: the class of scenes in which the implicit solver is known to run off seed
+// Eq. 4 (docs/theory.md, Known limits (i)), found at t = 0 so that a run can say so.
+//
+// A free block resting on a fixed face steeper than its friction angle slides from rest. Sliding,
+// its base reaction lies r = tan(phi) H / L of its half-length ahead of its centre (H and L: the
+// block's extents along the face's normal and along the face; r = 1: it topples rather than
+// slides), and at r near 1 it rests on its front corner, which meets every joint of the face
+// first. Measured on tests/test_tall_sliders.cpp's class (slopes of 20-40 deg at 1 deg steeper
+// than the friction, joints every 0.1-1 of the slider's length, 1 ms steps): the implicit solver
+// keeps 0.3 m sliders within 1 % of seed Eq. 4 at r = 0.8 and takes them 12-17 % off at r =
+// 0.85, 28-30 % at 0.88 and up to 70 % at 0.9; the substep solver keeps every run within 1.3e-4.
+#pragma once
+
+#include "forward/block_system.hpp"
+#include "forward/scene.hpp"
+
+namespace ddafit {
+
+// r from which a slider counts as tall: the largest r at which the class above stays within 1 %.
+inline constexpr double kTallSliderReach = 0.8;
+
+struct TallSlider {
+  int block = -1;         // the free block with the largest r, or -1 if none slides from rest
+  double reach = 0.0;     // its r = tan(phi_p) H / L
+  double slope = 0.0;     // its face's inclination, degrees
+  double friction = 0.0;  // the face's peak friction angle phi_p, degrees
+};
+
+// The free block with the largest r among those resting at t = 0 (a contact point within the
+// slop) on a fixed block's face steeper than the face's peak friction angle, without cohesion or
+// tensile strength to hold it. Detects the contacts once, as a run's first step would.
+TallSlider tallest_slider(const Scene& scene, const BlockSystem& s);
+
+}  // namespace ddafit
