@@ -53,7 +53,8 @@ std::string time_step_warning(const Scene& scene, const BlockSystem& s) {
   return out.str();
 }
 
-// The implicit solver's known limit (i) (docs/theory.md): a tall block sliding from rest.
+// The implicit solver's known limit (i) (docs/theory.md): a tall block sliding, from rest or given
+// a velocity along its face.
 // Above the largest r measured within 1 % (a rounding's worth above it: a slider built at exactly
 // r = 0.8 measures 0.8 to about 1e-15).
 bool is_tall(const TallSlider& slider) {
@@ -63,8 +64,9 @@ bool is_tall(const TallSlider& slider) {
 std::string tall_slider_warning(const BlockSystem& s, const TallSlider& slider) {
   std::ostringstream out;
   out.precision(3);
-  out << "block '" << s.block_names[slider.block] << "' slides from rest on a face " << slider.slope
-      << " deg steep (friction " << slider.friction << " deg) with its base reaction at r = tan(phi) H / L = "
+  out << "block '" << s.block_names[slider.block] << (slider.launched ? "' is given a velocity along" : "' slides from rest on")
+      << " a face " << slider.slope << " deg steep (friction " << slider.friction
+      << " deg) with its base reaction at r = tan(phi) H / L = "
       << slider.reach << " of its half-length ahead of its centre: the implicit solver takes such tall sliders "
          "up to 70 % off seed Eq. 4 where they cross joints (docs/theory.md, known limits (i)); "
          "time.integrator: substep keeps them within 1e-3";

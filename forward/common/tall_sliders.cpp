@@ -55,13 +55,15 @@ TallSlider tallest_slider(const Scene& scene, const BlockSystem& s) {
     if (c <= 0.0) continue;  // not resting on it
     const double mu = std::tan(face.friction_angle * M_PI / 180.0);
     const double tan_slope = std::sqrt(std::max(0.0, 1.0 - c * c)) / c;
-    if (!(tan_slope > mu)) continue;  // held by its friction from rest
+    const Vec2 t(-n.y(), n.x());
+    const bool launched = std::abs(s.blocks[b].velocity.head<2>().dot(t)) > 0.0;
+    if (!(tan_slope > mu) && !launched) continue;  // held by its friction, at rest
     double length = 0.0, height = 0.0;
-    extents(s, b, Vec2(-n.y(), n.x()), n, length, height);
+    extents(s, b, t, n, length, height);
     if (length <= 0.0) continue;
     const double reach = mu * height / length;
     if (reach > out.reach)
-      out = {b, reach, std::atan(tan_slope) * 180.0 / M_PI, face.friction_angle};
+      out = {b, reach, std::atan(tan_slope) * 180.0 / M_PI, face.friction_angle, launched};
   }
   return out;
 }
