@@ -9,10 +9,6 @@
 namespace ddafit {
 namespace {
 
-// The contact stage's tolerances at t = 0, as both solvers set them (run_implicit.cpp,
-// run_substep.cpp): the separating-axis slop is this share of the largest move per step.
-constexpr double kSlopRatio = 1e-3;
-
 // Extents of block b along the unit vectors t and n.
 void extents(const BlockSystem& s, int b, const Vec2& t, const Vec2& n, double& along_t, double& along_n) {
   const Block& block = s.blocks[b];
@@ -35,8 +31,7 @@ TallSlider tallest_slider(const Scene& scene, const BlockSystem& s) {
   const double max_move = scene.options.max_displacement_ratio * s.half_model_size;
   ContactDetection detection;
   if (!prepare_detection(s, detection).empty()) return out;
-  detection.settings.margin = scene.options.search_distance_factor * max_move;
-  detection.settings.linear_slop = kSlopRatio * max_move;
+  set_run_tolerances(detection.settings, scene.options.search_distance_factor, max_move);
   detection.settings.gravity = scene.gravity;
   ContactSet contacts;
   if (!detect_contacts(s, detection, contacts).empty()) return out;

@@ -41,6 +41,12 @@ inline constexpr double kProudRatio = 5e-6;
 // (model revision 2026-12-04.1).
 inline constexpr double kSagRatio = 2.0;
 
+// The slop (CollideSettings::linear_slop) as a share of the largest move a block may make per
+// step: an overlap that small is tolerated without push-out (substep solver) or a change of
+// contact state (implicit solver), since a contact pushed out to exactly zero chatters between
+// touching and not; it is also the separating-axis tolerance of the manifold.
+inline constexpr double kLinearSlopRatio = 1e-3;
+
 struct CollideSettings {
   double margin = 0.0;       // m: points are kept while their gap is below this (speculative)
   // m, per block (empty: none): a block moving further in the step than the margin covers
@@ -57,6 +63,14 @@ struct CollideSettings {
   // "Proud edges" (manifold.hpp) reads edges up to max(linear_slop, proud floor, sag) proud.
   double sag = 0.0;
 };
+
+// A run's tolerances, for blocks that move at most `max_move` per step: points kept while their
+// gap is under search_distance_factor x max_move, and the slop above. Both solvers' starts
+// (run_implicit.cpp, run_substep.cpp) and the tall-slider test at t = 0 (common/tall_sliders.cpp).
+inline void set_run_tolerances(CollideSettings& settings, double search_distance_factor, double max_move) {
+  settings.margin = search_distance_factor * max_move;
+  settings.linear_slop = kLinearSlopRatio * max_move;
+}
 
 // Replaces `contacts` (the last step's, manifolds sorted by piece pair, histories by key)
 // with this step's. The detection's `geometry`, `previous` and `previous_histories` are

@@ -27,10 +27,6 @@ namespace {
 // the elastic shortening of a tall mass, not for a block that is falling over.
 constexpr double kSettleShiftSteps = 10.0;
 
-// Overlap tolerated without changing a contact's state, as a fraction of the largest
-// displacement allowed per step (the separating-axis tolerance of the manifold).
-constexpr double kSlopRatio = 1e-3;
-
 // The deepest overlap at the end of an accepted step (the points' gaps from the step's
 // unknowns), relative to the smaller free block of its pair.
 void measure_overlaps(const BlockSystem& s, const ContactSet& contacts, double time, WorstOverlap& worst) {
@@ -57,8 +53,7 @@ void run_implicit(const Scene& scene, BlockSystem& system, RunRecorder& recorder
   TimeStepControl& control = ctx.control;
   control = make_time_step_control(options, scene.max_step, system.half_model_size, automatic_penalty(scene));
   CollideSettings& settings = ctx.detection.settings;
-  settings.margin = options.search_distance_factor * control.max_displacement;
-  settings.linear_slop = kSlopRatio * control.max_displacement;
+  set_run_tolerances(settings, options.search_distance_factor, control.max_displacement);
   settings.first_step = true;
   settings.gravity = scene.gravity;
   if (const std::string bad = prepare_detection(system, ctx.detection); !bad.empty()) {

@@ -18,10 +18,6 @@
 namespace ddafit {
 namespace {
 
-// Overlap tolerated without push-out, as a fraction of the largest displacement allowed
-// per step: a contact pushed out to exactly zero chatters between touching and not.
-constexpr double kSlopRatio = 1e-3;
-
 // A run stops when an overlap passes this fraction of the smaller block's size: the two
 // blocks are then no longer separated by their contact (a block passing through another).
 constexpr double kFailPenetrationRatio = 0.25;
@@ -174,8 +170,7 @@ void run_substep(const Scene& scene, BlockSystem& s, RunRecorder& recorder, Simu
   w.sleep.rest_time.assign(n, 0.0);
   w.sleep.asleep.assign(n, 0);
   CollideSettings& settings = w.detection.settings;
-  settings.margin = o.search_distance_factor * max_move;
-  settings.linear_slop = kSlopRatio * max_move;
+  set_run_tolerances(settings, o.search_distance_factor, max_move);
   settings.first_step = true;
   settings.gravity = scene.gravity;
   const double longest_substep = scene.max_step / o.substeps;
