@@ -103,6 +103,25 @@ struct Crossing {
                              0, "row"));
 }
 
+// Runs `s`, as its mirror image descending to the left if `mirrored` (the history turned
+// back), and sets `row_moved` to how far any of blocks 1..row_blocks (add_plane_and_free_row's
+// row) moved from its place at the first output, m.
+[[maybe_unused]] SimulationResult run_watching_row(Scene s, int row_blocks, bool mirrored, double& row_moved) {
+  std::vector<Vec2> start;
+  row_moved = 0.0;
+  SimulationHooks hooks;
+  hooks.on_output = [&](double, const BlockSystem& system) {
+    for (int b = 1; b <= row_blocks; ++b) {
+      if (start.size() < static_cast<size_t>(row_blocks)) start.push_back(system.blocks[b].centroid);
+      row_moved = std::max(row_moved, (system.blocks[b].centroid - start[b - 1]).norm());
+    }
+  };
+  if (mirrored) s = mirrored_scene(s);
+  SimulationResult r = simulate(s, hooks);
+  if (mirrored) unmirror_history(r.history);
+  return r;
+}
+
 // Seed Eq. 4's acceleration down a slope of `slope` degrees at friction `friction` degrees, m/s^2.
 [[maybe_unused]] double eq4_acceleration(double slope, double friction) {
   return 9.81 * (std::sin(slope * kDegree) - std::cos(slope * kDegree) * std::tan(friction * kDegree));

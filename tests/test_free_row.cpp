@@ -59,17 +59,7 @@ FreeRowRun run_free_row(const FreeRow& f, Integrator integrator) {
   s.blocks.push_back(slider);
   s.measure.push_back({"centre", slope.at(f.rear + 0.5 * f.length, row_height + 0.5 * f.height)});
   FreeRowRun run;
-  std::vector<Vec2> start;
-  SimulationHooks hooks;
-  hooks.on_output = [&](double, const BlockSystem& system) {
-    for (int b = 1; b <= f.row_blocks; ++b) {
-      if (start.size() < static_cast<size_t>(f.row_blocks)) start.push_back(system.blocks[b].centroid);
-      run.row_moved = std::max(run.row_moved, (system.blocks[b].centroid - start[b - 1]).norm());
-    }
-  };
-  if (f.mirrored) s = mirrored_scene(s);
-  run.result = simulate(s, hooks);
-  if (f.mirrored) unmirror_history(run.result.history);
+  run.result = run_watching_row(s, f.row_blocks, f.mirrored, run.row_moved);
   return run;
 }
 

@@ -71,17 +71,7 @@ LightRowRun run_light_row(const LightRow& c, Integrator integrator) {
   slider.velocity = c.speed * slope.along;
   s.blocks.push_back(slider);
   s.measure.push_back({"centre", slope.at(rear + 0.5 * kSliderLength, row_height + 0.5 * height)});
-  std::vector<Vec2> start;
-  SimulationHooks hooks;
-  hooks.on_output = [&](double, const BlockSystem& system) {
-    for (int b = 1; b <= run.row_blocks; ++b) {
-      if (start.size() < static_cast<size_t>(run.row_blocks)) start.push_back(system.blocks[b].centroid);
-      run.row_moved = std::max(run.row_moved, (system.blocks[b].centroid - start[b - 1]).norm());
-    }
-  };
-  if (c.mirrored) s = mirrored_scene(s);
-  run.result = simulate(s, hooks);
-  if (c.mirrored) unmirror_history(run.result.history);
+  run.result = run_watching_row(s, run.row_blocks, c.mirrored, run.row_moved);
   Crossing eq4;
   eq4.slope = c.slope, eq4.friction = friction, eq4.speed = c.speed;
   run.error = run.result.summary.status == RunStatus::Completed ? displacement_error(run.result, eq4, &run.when) : 1.0;
