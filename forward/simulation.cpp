@@ -7,7 +7,7 @@
 #include <cmath>
 #include <sstream>
 
-#include "forward/common/tall_sliders.hpp"
+#include "forward/common/known_limits.hpp"
 #include "forward/perturb.hpp"
 #include "forward/run_record.hpp"
 #include "forward/step/run_implicit.hpp"
@@ -55,12 +55,6 @@ std::string time_step_warning(const Scene& scene, const BlockSystem& s) {
 
 // The implicit solver's known limit (i) (docs/theory.md): a tall block sliding, from rest or given
 // a velocity along its face.
-// Above the largest r measured within 1 % (a rounding's worth above it: a slider built at exactly
-// r = 0.8 measures 0.8 to about 1e-15).
-bool is_tall(const TallSlider& slider) {
-  return slider.block >= 0 && slider.reach > kTallSliderReach * (1.0 + 1e-9);
-}
-
 std::string tall_slider_warning(const BlockSystem& s, const TallSlider& slider) {
   std::ostringstream out;
   out.precision(3);
@@ -73,9 +67,21 @@ std::string tall_slider_warning(const BlockSystem& s, const TallSlider& slider) 
   return out.str();
 }
 
+// Known limit (j): a block resting on a free block much lighter than itself.
+std::string heavy_on_light_warning(const BlockSystem& s, const HeavyOnLight& heavy) {
+  std::ostringstream out;
+  out.precision(3);
+  out << "block '" << s.block_names[heavy.heavy] << "' rests on block '" << s.block_names[heavy.light] << "', "
+      << heavy.ratio << " times lighter: heavy blocks sliding on blocks 30 or more times lighter run off seed Eq. 4 "
+         "on both solvers, and more often and far more slowly on the implicit one (docs/theory.md, known limits (j)); "
+         "time.integrator: substep is the better of the two there";
+  return out.str();
+}
+
 // Integrator::Auto's rule (options.hpp, kAutoSubstepBlocks), and the reason given in
 // the summary.
-SolverReport choose_solver(const Scene& scene, const BlockSystem& s, const TallSlider& slider) {
+SolverReport choose_solver(const Scene& scene, const BlockSystem& s, const KnownLimits& limits) {
+  const TallSlider& slider = limits.slider;
   SolverReport report;
   if (scene.options.integrator != Integrator::Auto) {
     report.integrator = scene.options.integrator;
@@ -93,6 +99,16 @@ SolverReport choose_solver(const Scene& scene, const BlockSystem& s, const TallS
     out.precision(3);
     out << report.reason << ", but block '" << s.block_names[slider.block] << "' is a tall slider (r = tan(phi) H / L = "
         << slider.reach << "), which the implicit solver runs off seed Eq. 4 (docs/theory.md, known limits (i))";
+    report.reason = out.str();
+  } else if (!many && is_heavy_on_light(limits.heavy)) {
+    // Nor for one of its known limit (j) (heavy_on_light_warning above).
+    report.integrator = Integrator::Substep;
+    std::ostringstream out;
+    out.precision(3);
+    out << report.reason << ", but block '" << s.block_names[limits.heavy.heavy] << "' rests on block '"
+        << s.block_names[limits.heavy.light] << "', " << limits.heavy.ratio
+        << " times lighter, which the implicit solver runs off seed Eq. 4 more often than the substep solver "
+           "(docs/theory.md, known limits (j))";
     report.reason = out.str();
   }
   return report;
@@ -158,12 +174,13 @@ SimulationResult simulate(const Scene& given, const SimulationHooks& hooks) {
 #endif
 
   BlockSystem system = build_block_system(scene);
-  // The tall slider, wherever the implicit solver may run (choose_solver, tall_slider_warning).
+  // The known limits' classes, wherever the implicit solver may run (choose_solver and the
+  // warnings above).
   const Integrator asked = scene.options.integrator;
   const bool implicit_possible = asked == Integrator::Implicit ||
                                  (asked == Integrator::Auto && system.free_block_count < kAutoSubstepBlocks);
-  const TallSlider slider = implicit_possible ? tallest_slider(scene, system) : TallSlider{};
-  summary.solver = choose_solver(scene, system, slider);
+  const KnownLimits limits = implicit_possible ? find_known_limits(scene, system) : KnownLimits{};
+  summary.solver = choose_solver(scene, system, limits);
   for (std::string& w : unused_setting_warnings(scene.options, summary.solver))
     summary.warnings.push_back(std::move(w));
   RunRecorder recorder(scene, hooks, result);
@@ -173,7 +190,8 @@ SimulationResult simulate(const Scene& given, const SimulationHooks& hooks) {
     run_substep(scene, system, recorder, summary);
   } else {
     if (std::string w = time_step_warning(scene, system); !w.empty()) summary.warnings.push_back(w);
-    if (is_tall(slider)) summary.warnings.push_back(tall_slider_warning(system, slider));
+    if (is_tall(limits.slider)) summary.warnings.push_back(tall_slider_warning(system, limits.slider));
+    if (is_heavy_on_light(limits.heavy)) summary.warnings.push_back(heavy_on_light_warning(system, limits.heavy));
     run_implicit(scene, system, recorder, summary);
   }
   summary.profile.total = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();

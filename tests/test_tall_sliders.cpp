@@ -12,7 +12,7 @@
 #include <iostream>
 #include <string>
 
-#include "forward/common/tall_sliders.hpp"
+#include "forward/common/known_limits.hpp"
 #include "tests/contact_scene_audit.hpp"
 #include "tests/slope_scene.hpp"
 
@@ -92,7 +92,7 @@ Scene tall_slider_scene(double slope, double friction, double r, bool mirrored, 
   return mirrored ? mirrored_scene(scene) : scene;
 }
 
-// tallest_slider finds the class at t = 0 (forward/common/tall_sliders.hpp): the slider built with
+// tallest_slider finds the class at t = 0 (forward/common/known_limits.hpp): the slider built with
 // r = tan(phi) H / L and its slope, to rounding (1e-9), both ways down; none where the face is
 // gentler than its friction (the block is held from rest) however tall the block.
 TEST(TallSliders, TheClassIsFoundAtTheStartFromTheSlidersShape) {

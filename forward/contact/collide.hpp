@@ -66,7 +66,7 @@ struct CollideSettings {
 
 // A run's tolerances, for blocks that move at most `max_move` per step: points kept while their
 // gap is under search_distance_factor x max_move, and the slop above. Both solvers' starts
-// (run_implicit.cpp, run_substep.cpp) and the tall-slider test at t = 0 (common/tall_sliders.cpp).
+// (run_implicit.cpp, run_substep.cpp) and the tall-slider test at t = 0 (common/known_limits.cpp).
 inline void set_run_tolerances(CollideSettings& settings, double search_distance_factor, double max_move) {
   settings.margin = search_distance_factor * max_move;
   settings.linear_slop = kLinearSlopRatio * max_move;
