@@ -72,9 +72,9 @@ std::string heavy_on_light_warning(const BlockSystem& s, const HeavyOnLight& hea
   std::ostringstream out;
   out.precision(3);
   out << "block '" << s.block_names[heavy.heavy] << "' rests on block '" << s.block_names[heavy.light] << "', "
-      << heavy.ratio << " times lighter: heavy blocks sliding on blocks 30 or more times lighter run off seed Eq. 4 "
-         "on both solvers, and more often and far more slowly on the implicit one (docs/theory.md, known limits (j)); "
-         "time.integrator: substep is the better of the two there";
+      << heavy.ratio << " times lighter: heavy blocks sliding on blocks " << kHeavyOnLightRatio
+      << " or more times lighter run off seed Eq. 4 on both solvers, and more often and far more slowly on the "
+         "implicit one (docs/theory.md, known limits (j)); time.integrator: substep is the better of the two there";
   return out.str();
 }
 
