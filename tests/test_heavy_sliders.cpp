@@ -106,7 +106,8 @@ struct LightRowSweep {
   std::string worst_label;
 };
 
-LightRowSweep sweep_light_rows(Integrator integrator, const std::vector<double>& ratios, const std::vector<double>& speeds) {
+LightRowSweep sweep_light_rows(Integrator integrator, const std::vector<double>& ratios,
+                               const std::vector<double>& speeds) {
   LightRowSweep sweep;
   for (const bool mirrored : {false, true})
     for (const double slope : {20.0, 30.0, 40.0})

@@ -1,11 +1,11 @@
 // The classes of scenes in which the implicit solver is known to run off seed Eq. 4, found at
 // t = 0 so that `time.integrator: auto` can avoid them and a run can say so.
 //
-// Tall sliders (docs/theory.md, Known limits (i)). A free block resting on a fixed face steeper than its friction angle slides from rest, and one
-// given a velocity along the face slides until its friction stops it. Sliding,
-// its base reaction lies r = tan(phi) H / L of its half-length ahead of its centre (H and L: the
-// block's extents along the face's normal and along the face; r = 1: it topples rather than
-// slides), and at r near 1 it rests on its front corner, which meets every joint of the face
+// Tall sliders (docs/theory.md, Known limits (i)). A free block resting on a fixed face steeper
+// than its friction angle slides from rest, and one given a velocity along the face slides until
+// its friction stops it. Sliding, its base reaction lies r = tan(phi) H / L of its half-length
+// ahead of its centre (H and L: the block's extents along the face's normal and along the face;
+// r = 1: it topples rather than slides), and at r near 1 it rests on its front corner, which meets every joint of the face
 // first. Measured on tests/test_tall_sliders.cpp's class (slopes of 20-40 deg at 1 deg steeper
 // than the friction, joints every 0.1-1 of the slider's length, 1 ms steps): the implicit solver
 // keeps 0.3 m sliders within 1 % of seed Eq. 4 at r = 0.8 and takes them 12-17 % off at r =
