@@ -38,6 +38,7 @@ struct LightRow {
   double row_share = 0.1;  // the row blocks' length, of the slider's
   double speed = 0.0;      // m/s down the slope at t = 0
   bool mirrored = false;
+  double step = kStep;     // time.step, s
 };
 
 struct LightRowRun {
@@ -60,7 +61,7 @@ Scene light_row_scene(const LightRow& c, Integrator integrator, int& row_blocks)
   while (k * row_length - 0.02 * row_length - kSliderLength < 0.2 * kSliderLength) ++k;
   const double rear = k * row_length - 0.02 * row_length - kSliderLength;
   row_blocks = static_cast<int>(std::ceil((rear + 1.5 * kSliderLength + travel) / row_length));
-  Scene s = base_scene(kDuration1, kStep, kOutput, integrator);
+  Scene s = base_scene(kDuration1, c.step, kOutput, integrator);
   const int holds = add_interface(s, "holds", 75.0);
   const int slides = add_interface(s, "slides", friction);
   s.contact_rules = {{"plane", "row", holds}, {"row", "row", holds}, {"slider", "row", slides}};
@@ -107,14 +108,14 @@ struct LightRowSweep {
 };
 
 LightRowSweep sweep_light_rows(Integrator integrator, const std::vector<double>& ratios,
-                               const std::vector<double>& speeds) {
+                               const std::vector<double>& speeds, double step = kStep) {
   LightRowSweep sweep;
   for (const bool mirrored : {false, true})
     for (const double slope : {20.0, 30.0, 40.0})
       for (const double r : ratios)
         for (const double row_share : {0.1, 0.3, 1.0})
           for (const double speed : speeds) {
-            const LightRowRun run = run_light_row({slope, r, row_share, speed, mirrored}, integrator);
+            const LightRowRun run = run_light_row({slope, r, row_share, speed, mirrored, step}, integrator);
             ++sweep.runs;
             if (!within(run)) ++sweep.off;
             if (run.error > sweep.worst) sweep.worst = run.error, sweep.worst_label = run.label;
@@ -147,6 +148,17 @@ TEST(HeavySliders, DISABLED_TallOrFastHeavySlidersCrossRowsOfMuchLighterBlocksSu
   const LightRowSweep still = sweep_light_rows(Integrator::Substep, {0.8, 0.9, 0.95}, {0.0});
   const LightRowSweep fast = sweep_light_rows(Integrator::Substep, {0.5, 0.8, 0.9, 0.95}, {3.0});
   EXPECT_EQ(still.off + fast.off, 0);
+}
+
+// KNOWN DEFECT (found 2026-12-05, revision 2026-12-05.8; docs/theory.md, Known limits (j)):
+// at the Vajont scenes' time.step of 10 ms (x 3 substeps), from rest, 68 of the 72 runs are off:
+// every tall one (r 0.8-0.95), on the 0.3 m row blocks too (1.2-62 %; the slider outweighs them
+// only 3-6 times): it runs up to 15 % ahead of Eq. 4 and then hooks at its first joint; at
+// r = 0.5 14 of 18 are off, 1.4-5.4 % (the four within are on the 0.3 m blocks at 30-40 deg). The same sliders on fixed joints at 10 ms keep within 0.3 % (216 runs of
+// test_tall_sliders.cpp's class, and 144 more at r = 0.3 and 0.5).
+TEST(HeavySliders, DISABLED_SlidersFromRestCrossFreeRowsAtTenMillisecondsSubstep) {
+  const LightRowSweep sweep = sweep_light_rows(Integrator::Substep, {0.5, 0.8, 0.9, 0.95}, {0.0}, 0.01);
+  EXPECT_EQ(sweep.off, 0);
 }
 
 // KNOWN DEFECT (found 2026-12-05, revision 2026-12-05.7; docs/theory.md, Known limits (j)):
