@@ -10,7 +10,7 @@ namespace ddafit {
 enum class Integrator {
   Implicit,  // Shi's global solve with the open-close iteration: exact on the analytic checks
   Substep,   // velocity-level impulses in substeps: cost proportional to the contacts
-  Auto,      // Substep from kAutoSubstepBlocks free blocks up or for a tall slider, Implicit else
+  Auto,      // Substep from kAutoSubstepBlocks free blocks up or for a known limit's class, Implicit else
   Sled,      // fidelity 0: the free blocks as one flexible sled along the ground (forward/sled/)
 };
 

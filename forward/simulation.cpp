@@ -92,25 +92,22 @@ SolverReport choose_solver(const Scene& scene, const BlockSystem& s, const Known
   report.integrator = many ? Integrator::Substep : Integrator::Implicit;
   report.reason = "auto: " + std::to_string(s.free_block_count) + " free blocks, " + (many ? ">= " : "< ") +
                   std::to_string(kAutoSubstepBlocks) + " (docs/speed-accuracy.md)";
-  // Not the implicit solver for a scene of its known limit (i) (tall_slider_warning above).
-  if (!many && is_tall(slider)) {
-    report.integrator = Integrator::Substep;
-    std::ostringstream out;
-    out.precision(3);
-    out << report.reason << ", but block '" << s.block_names[slider.block] << "' is a tall slider (r = tan(phi) H / L = "
-        << slider.reach << "), which the implicit solver runs off seed Eq. 4 (docs/theory.md, known limits (i))";
-    report.reason = out.str();
-  } else if (!many && is_heavy_on_light(limits.heavy)) {
-    // Nor for one of its known limit (j) (heavy_on_light_warning above).
-    report.integrator = Integrator::Substep;
-    std::ostringstream out;
-    out.precision(3);
-    out << report.reason << ", but block '" << s.block_names[limits.heavy.heavy] << "' rests on block '"
-        << s.block_names[limits.heavy.light] << "', " << limits.heavy.ratio
-        << " times lighter, which the implicit solver runs off seed Eq. 4 more often than the substep solver "
-           "(docs/theory.md, known limits (j))";
-    report.reason = out.str();
+  if (many) return report;
+  // Not the implicit solver for a scene of its known limits (i) and (j) (the warnings above).
+  std::ostringstream why;
+  why.precision(3);
+  if (is_tall(slider)) {
+    why << ", but block '" << s.block_names[slider.block] << "' is a tall slider (r = tan(phi) H / L = " << slider.reach
+        << "), which the implicit solver runs off seed Eq. 4 (docs/theory.md, known limits (i))";
+  } else if (const HeavyOnLight& heavy = limits.heavy; is_heavy_on_light(heavy)) {
+    why << ", but block '" << s.block_names[heavy.heavy] << "' rests on block '" << s.block_names[heavy.light] << "', "
+        << heavy.ratio << " times lighter, which the implicit solver runs off seed Eq. 4 more often than the substep "
+           "solver (docs/theory.md, known limits (j))";
+  } else {
+    return report;
   }
+  report.integrator = Integrator::Substep;
+  report.reason += why.str();
   return report;
 }
 

@@ -92,7 +92,7 @@ Scene tall_slider_scene(double slope, double friction, double r, bool mirrored, 
   return mirrored ? mirrored_scene(scene) : scene;
 }
 
-// tallest_slider finds the class at t = 0 (forward/common/known_limits.hpp): the slider built with
+// find_known_limits finds the class at t = 0 (forward/common/known_limits.hpp): the slider built with
 // r = tan(phi) H / L and its slope, to rounding (1e-9), both ways down; none where the face is
 // gentler than its friction (the block is held from rest) however tall the block.
 TEST(TallSliders, TheClassIsFoundAtTheStartFromTheSlidersShape) {
@@ -101,7 +101,7 @@ TEST(TallSliders, TheClassIsFoundAtTheStartFromTheSlidersShape) {
       for (const double r : {0.3, 0.8, 0.95}) {
         const Scene scene = tall_slider_scene(slope, slope - 1.0, r, mirrored, Integrator::Implicit);
         const BlockSystem s = build_block_system(scene);
-        const TallSlider found = tallest_slider(scene, s);
+        const TallSlider found = find_known_limits(scene, s).slider;
         ASSERT_GE(found.block, 0) << slope << " deg, r " << r;
         EXPECT_EQ(s.block_names[found.block], "slider");
         EXPECT_NEAR(found.reach, r, 1e-9 * r) << slope << " deg, r " << r << (mirrored ? ", mirrored" : "");
@@ -109,10 +109,10 @@ TEST(TallSliders, TheClassIsFoundAtTheStartFromTheSlidersShape) {
         EXPECT_DOUBLE_EQ(found.friction, slope - 1.0);
       }
   const Scene held = tall_slider_scene(30.0, 35.0, 0.95, false, Integrator::Implicit);
-  EXPECT_LT(tallest_slider(held, build_block_system(held)).block, 0);
+  EXPECT_LT(find_known_limits(held, build_block_system(held)).slider.block, 0);
   // Given 3 m/s down a face its friction would hold from rest: found, as launched.
   const Scene thrown = tall_slider_scene(30.0, 35.0, 0.95, false, Integrator::Implicit, 3.0);
-  const TallSlider found = tallest_slider(thrown, build_block_system(thrown));
+  const TallSlider found = find_known_limits(thrown, build_block_system(thrown)).slider;
   EXPECT_NEAR(found.reach, 0.95, 1e-9);
   EXPECT_TRUE(found.launched);
 }

@@ -25,11 +25,6 @@ void extents(const BlockSystem& s, int b, const Vec2& t, const Vec2& n, double& 
 // on the other (collide.cpp's supports take a tenth too).
 constexpr double kRestsOn = 0.1;
 
-double mass_of(const BlockSystem& s, int b) {
-  const Block& block = s.blocks[b];
-  return block.material >= 0 ? s.density[block.material] * std::abs(block.area) : 0.0;
-}
-
 // The free block of m resting on the fixed one as a tall-slider candidate, into `out`.
 void take_slider(const BlockSystem& s, const ContactManifold& m, const Vec2& up, TallSlider& out) {
   const bool fa = s.blocks[m.block_a].fixed;
@@ -57,9 +52,9 @@ void take_heavy(const BlockSystem& s, const ContactManifold& m, const Vec2& up, 
   const double c = m.normal.dot(up);  // > 0: b lies on a
   if (std::abs(c) <= kRestsOn) return;
   const int upper = c > 0.0 ? m.block_b : m.block_a, lower = c > 0.0 ? m.block_a : m.block_b;
-  const double light = mass_of(s, lower);
+  const double light = s.mass(lower);
   if (!(light > 0.0)) return;
-  const double ratio = mass_of(s, upper) / light;
+  const double ratio = s.mass(upper) / light;
   if (ratio > out.ratio) out = {upper, lower, ratio};
 }
 
@@ -92,7 +87,5 @@ KnownLimits find_known_limits(const Scene& scene, const BlockSystem& s) {
   }
   return out;
 }
-
-TallSlider tallest_slider(const Scene& scene, const BlockSystem& s) { return find_known_limits(scene, s).slider; }
 
 }  // namespace ddafit

@@ -66,7 +66,5 @@ bool is_heavy_on_light(const HeavyOnLight& heavy);
 
 // Both classes from one contact detection, as a run's first step would do it.
 KnownLimits find_known_limits(const Scene& scene, const BlockSystem& s);
-// Its tall slider alone.
-TallSlider tallest_slider(const Scene& scene, const BlockSystem& s);
 
 }  // namespace ddafit
