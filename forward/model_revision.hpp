@@ -7,6 +7,6 @@
 
 namespace ddafit {
 
-inline constexpr const char* kModelRevision = "2026-12-05.8";
+inline constexpr const char* kModelRevision = "2026-12-05.9";
 
 }  // namespace ddafit

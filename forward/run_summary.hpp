@@ -81,6 +81,7 @@ struct SolverReport {
   Integrator integrator = Integrator::Implicit;  // the one that ran (never Auto)
   std::string reason;                            // why: the scene's choice or the Auto rule
   int substeps = 0;                              // per step (substep solver)
+  double deep_overlap_ratio = 0.0;               // control.deep_overlap_ratio as resolved (substep solver)
   long contact_points = 0;                       // summed over steps (mean = / steps)
   double worst_penetration = 0.0;                // m, deepest overlap at the end of a step
   double worst_penetration_ratio = 0.0;          // that depth / the smaller block's size

@@ -137,6 +137,7 @@ std::vector<std::string> unused_setting_warnings(const SimulationOptions& o, con
     if (o.contact_damping_ratio != d.contact_damping_ratio) unused.push_back("control.contact_damping_ratio");
     if (o.rigid_blocks != d.rigid_blocks) unused.push_back("control.rigid_blocks");
     if (o.contact_passes != d.contact_passes) unused.push_back("control.contact_passes");
+    if (o.deep_overlap_ratio != d.deep_overlap_ratio) unused.push_back("control.deep_overlap_ratio");
     if (o.sleep_time != d.sleep_time) unused.push_back("control.sleep_time");
     if (o.sleep_speed != d.sleep_speed) unused.push_back("control.sleep_speed");
     if (o.split_impulses != d.split_impulses) unused.push_back("control.split_impulses");

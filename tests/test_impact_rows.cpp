@@ -2,7 +2,7 @@
 // stacks and the reasons): a block driven into a row free to move along the floor, and slow
 // impacts into a row that ends against a fixed wall; as built, mirrored (the striker driven in
 // from the right, forward/mirror.hpp) and with the scene's blocks listed in reverse. The
-// substep solver's mirrored and reversed sweeps are known defects (disabled; docs/theory.md
+// substep solver's mirrored free rows and reversed sweeps are known defects (disabled; docs/theory.md
 // §13, "Limits of the substep solver").
 #include <gtest/gtest.h>
 
@@ -66,7 +66,9 @@ TEST(ImpactRebound, ASlowBlockDrivenIntoAWalledRowIsNotThrownBackSubstep) {
 //   - substep, free row: 1 of 192, a 4 m block at 10 m/s into ten 1 m blocks at 45 deg,
 //     10 ms x 3, comes back at 6.6 % of its speed (bound 6.0 %);
 //   - substep, walled row: 1 of 48, a 4 m block at 1 m/s into three 4 m blocks, 10 ms x 3,
-//     comes back at 15.4 % (bound 14.8 %).
+//     came back at 15.4 % (bound 14.8 %); since model revision 2026-12-05.9 (overlaps
+//     corrected from 2.5e-4 of a block in scenes this small, control.deep_overlap_ratio) all 48
+//     are within their bounds (worst 27.9 % of 0.3 m/s, 0.016 under its bound), enabled below.
 TEST(ImpactRebound, ASlowBlockDrivenIntoAWalledRowMirroredIsNotThrownBackImplicit) {
   expect_inelastic(Shape::WalledRow, Integrator::Implicit, {0.3, 1.0}, 48, {3, 6, 10}, {30.0}, true);
 }
@@ -88,7 +90,7 @@ TEST(ImpactRebound, ABlockDrivenIntoAFreeRowMirroredIsNotThrownBackImplicit) {
   expect_inelastic(Shape::FreeRow, Integrator::Implicit, {1.0, 2.0, 5.0, 10.0}, 192, {3, 6, 10}, {30.0, 45.0}, true);
 }
 
-TEST(ImpactRebound, DISABLED_ASlowBlockDrivenIntoAWalledRowMirroredIsNotThrownBackSubstep) {
+TEST(ImpactRebound, ASlowBlockDrivenIntoAWalledRowMirroredIsNotThrownBackSubstep) {
   expect_inelastic(Shape::WalledRow, Integrator::Substep, {0.3, 1.0}, 48, {3, 6, 10}, {30.0}, true);
 }
 

@@ -224,6 +224,9 @@ TEST(SceneReader, BadControlValue) {
                         "control.max_open_close_iterations", "whole number"));
   // A negative sleep speed would put no block to sleep, silently.
   EXPECT_TRUE(FailsWith(kExample + "control: {sleep_speed: -0.05}\n", "control.sleep_speed", "[0, 1000]"));
+  // A deep overlap of a fifth of a block would leave blocks pressed through each other uncorrected.
+  EXPECT_TRUE(FailsWith(kExample + "control: {deep_overlap_ratio: 0.2}\n", "control.deep_overlap_ratio", "[0, 0.1]"));
+  EXPECT_TRUE(FailsWith(kExample + "control: {deep_overlap_ratio: -1e-3}\n", "control.deep_overlap_ratio", "[0, 0.1]"));
 }
 
 TEST(SceneReader, UnreadableFile) {

@@ -114,8 +114,8 @@ TEST(Stability, TimeStepWarningMarksTheInaccurateRuns) {
 }
 
 TEST(Stability, SubstepSolverFailsWithADiagnosisNeverWithGarbage) {
-  // Where the substep solver fails (docs/verification.md, its stability map): a stack of
-  // five 1 m blocks at rest with 50 ms steps. Every run either completes with a finite
+  // The substep solver's stability map (docs/verification.md): the incline and a stack of
+  // five 1 m blocks at rest, up to 50 ms steps. Every run either completes with a finite
   // result or stops with a message naming the settings to change; at the scene's 1 ms both
   // scenes hold their verification tolerances (incline 0.5 %, stack 1 mm).
   const auto map = verification::substep_stability_map({1e-3, 5e-2}, {2, 4});
@@ -134,13 +134,31 @@ TEST(Stability, SubstepSolverFailsWithADiagnosisNeverWithGarbage) {
     }
     if (p.scene == "stack" && p.time_step == 5e-2 && p.substeps == 2) coarse_stack = &p;
   }
-  // The measured failure: 50 ms x 2 (25 ms substeps on 1 m blocks). Until model revision
-  // 2026-12-03.6 the stack failed at every step from 20 ms and at 50 ms x 4 too: the step
-  // control cut its steps below the quiet start's and the warm start handed on the larger
-  // steps' impulses unscaled (docs/theory.md §13, the warm start).
+  // 50 ms x 2 (25 ms substeps on 1 m blocks), the map's one failure until model revision
+  // 2026-12-05.9 (the energy audit stopped it at t = 3.1 s), holds the stack within the 1 mm of
+  // the scene's own step since overlaps in a scene this small are corrected from 2.5e-4 of a
+  // block (control.deep_overlap_ratio; measured 0.57 mm). Until revision 2026-12-03.6 the stack
+  // failed at every step from 20 ms and at 50 ms x 4 too: the step control cut its steps below
+  // the quiet start's and the warm start handed on the larger steps' impulses unscaled
+  // (docs/theory.md §13, the warm start).
   ASSERT_NE(coarse_stack, nullptr);
-  EXPECT_FALSE(coarse_stack->completed)
-      << "stack at 50 ms x 2 completed with top movement " << coarse_stack->error << " m";
+  ASSERT_TRUE(coarse_stack->completed) << coarse_stack->diagnosis;
+  EXPECT_LT(coarse_stack->error, 1e-3) << "stack at 50 ms x 2";
+}
+
+// KNOWN DEFECT (found 2026-12-05 at revision 2026-12-05.9, and there at .05.8): at steps of a
+// third of a second and more the substep solver can let the stack of five 1 m blocks through
+// its ground and report the run completed, the top block 122.6 m down after 5 s (free fall):
+// 0.3 s x 1 and 1 s x 1 at .05.9; 0.5 s x 1 and x 2 and 1 s x 1 at .05.8 (0.5 s x 1 at .05.9
+// stops with an overlap diagnosis). Nothing checks for a block that has passed wholly through a fixed one
+// (common/containment_check.hpp catches only a centroid inside one). A completed run must
+// not have moved the stack's top by more than a block.
+TEST(Stability, DISABLED_AStackRunAtHugeStepsNeverFallsThroughItsGround) {
+  const auto map = verification::substep_stability_map({0.3, 0.5, 1.0}, {1, 2});
+  for (const auto& p : map)
+    if (p.scene == "stack" && p.completed) {
+      EXPECT_LT(p.error, 1.0) << p.time_step << " s x " << p.substeps;
+    }
 }
 
 }  // namespace

@@ -98,6 +98,7 @@ inline constexpr ControlKey kControlKeys[] = {
     {"split_impulses", &SimulationOptions::split_impulses},
     {"rigid_blocks", &SimulationOptions::rigid_blocks},
     {"contact_passes", &SimulationOptions::contact_passes},
+    {"deep_overlap_ratio", &SimulationOptions::deep_overlap_ratio},
     {"sleep_time", &SimulationOptions::sleep_time},
     {"sleep_speed", &SimulationOptions::sleep_speed},
 };

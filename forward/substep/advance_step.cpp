@@ -25,10 +25,6 @@ namespace {
 // (block_stress.hpp).
 constexpr double kStressRelaxation = 0.1;
 
-// Overlap at which a point counts as deep (position correction, converge_deep), as a share of
-// the smaller block of its pair (run_substep.cpp keeps the correction's other settings).
-constexpr double kDeepOverlap = 0.004;
-
 // Split impulses' position update (integrate.hpp): a velocity change within a substep up to
 // h x this many times gravity counts as the work of steady forces (trapezoidal move), the
 // rest as an impact (the move follows the velocity after it). Twice gravity: free flight and
@@ -118,7 +114,7 @@ SweepSettings prepare_step(SubstepContext& w, double h) {
   compute_block_masses(s, w.state.masses);
   mask_sleeping(w.sleep, w.state.masses);
   water_accelerations(s, w.scene.gravity.norm(), h * w.options.substeps, w.state);
-  prepare_contacts(w, h, kDeepOverlap, w.last_substep > 0.0 ? h / w.last_substep : 1.0);
+  prepare_contacts(w, h, w.deep_overlap_ratio, w.last_substep > 0.0 ? h / w.last_substep : 1.0);
   w.last_substep = h;
   w.state.deep.assign(w.contacts.manifolds.size(), 0);
   w.state.of_block.reset();

@@ -36,9 +36,8 @@ constexpr int kQuietStartSteps = 500;
 constexpr double kQuietStartTolerance = 1e-4;
 
 // Position correction after each step (solve_contacts.hpp): passes; the share of an
-// overlap's excess removed per pass (from the overlap it starts at, advance_step.cpp's
-// kDeepOverlap: 0.4 % of the smaller block, under half the 1 % the run is held to, so that a
-// step's new overlap stays below it); and the largest correction per point and pass as a share
+// overlap's excess removed per pass (from the overlap it starts at, control.deep_overlap_ratio
+// of the smaller block, options.hpp); and the largest correction per point and pass as a share
 // of the largest move allowed per step.
 // Eight passes of up to half a move: with three of a fifth, a light block jammed between
 // heavy ones kept 1.9 % of its size (Vajont IV degraded) and 1.0 % (V); with eight of a half,
@@ -163,6 +162,8 @@ void run_substep(const Scene& scene, BlockSystem& s, RunRecorder& recorder, Simu
   for (const Material& m : scene.materials) w.deformable.push_back(!(m.rigid || o.rigid_blocks));
   const double max_move = o.max_displacement_ratio * s.half_model_size;
   w.max_move = max_move;
+  w.deep_overlap_ratio = deep_overlap_ratio(o.deep_overlap_ratio, s.free_block_count);
+  report.deep_overlap_ratio = w.deep_overlap_ratio;
   w.ground = GroundTrack(scene.earthquake);
   // Sleeping (sleep.hpp): not under an earthquake, whose load changes every step.
   w.sleep.sleep_time = w.ground.present() ? 0.0 : o.sleep_time;

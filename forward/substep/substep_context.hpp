@@ -30,6 +30,9 @@ struct SubstepContext {
   StepProfile* profile;  // the quiet start points it at a scratch profile: its time is `settle`'s
   SolverReport& report;
   double max_move = 0.0;  // m, the largest move of a vertex in contact per step
+  // Overlap at which a point counts as deep (position correction, converge_deep), as a share of
+  // the smaller block of its pair: control.deep_overlap_ratio, resolved (options.hpp).
+  double deep_overlap_ratio = kDeepOverlapLargeScene;
   GroundTrack ground;     // the earthquake, if any (forward/earthquake/ground_motion.hpp)
   double time = 0.0;      // s, the start of the step being advanced
   double load_work = 0.0; // J/m: the ground's inertial load's work in the last step, substep by substep
