@@ -28,7 +28,7 @@ const char* to_string(Integrator integrator);
 // (tests/test_heavy_sliders.cpp); the whole test suite passes at 2.5e-4 in the same wall.
 // From kAutoSubstepBlocks up: 4e-3 (under half the 1 % a run is held to, so that a step's new
 // overlap stays below 1 %). Landslide meshes pay for a lower value: Vajont section VII degraded
-// took 269 s at 5e-4 against 129 s (its sweeps beside deep points 2.8 times as long), and its
+// took 269 s at 5e-4 against 129 s (its solve stage 2.8 times as long), and its
 // worst overlap stayed 0.69 % (docs/performance.md).
 inline constexpr double kDeepOverlapSmallScene = 2.5e-4;
 inline constexpr double kDeepOverlapLargeScene = 4e-3;
