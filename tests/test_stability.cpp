@@ -155,8 +155,8 @@ TEST(Stability, SubstepSolverFailsWithADiagnosisNeverWithGarbage) {
 // not have moved the stack's top by more than a block. Tried and withdrawn (2026-12-05): stopping
 // a run once a free block lies wholly below every fixed block stopped these five runs with a
 // diagnosis, and 18 enabled tests of both solvers (three command-line tests failed too) whose
-// blocks rightly end below their fixed
-// ones (a block off a corner, chains hung by bonds, a kinked surface, an incline's sliders).
+// blocks rightly end below their fixed ones (a block off a corner, chains hung by bonds, a kinked
+// surface, an incline's sliders).
 TEST(Stability, DISABLED_AStackRunAtHugeStepsNeverFallsThroughItsGround) {
   const auto map = verification::substep_stability_map({0.3, 0.5, 1.0}, {1, 2});
   for (const auto& p : map)
