@@ -144,9 +144,8 @@ TEST(HeavySliders, AHeavySliderFromRestCrossesRowsOfMuchLighterBlocksSubstep) {
 
 // The same squat sliders at the Vajont scenes' time.step of 10 ms (x 4 substeps). Until model
 // revision 2026-12-05.9 14 of the 18 were 1.4-8.8 % off (the known defect below held them
-// too): the lighter row blocks stayed up to the 0.4 % of
-// their size at which the position correction started deep in the plane, and the slider rode
-// tilted on them; a tilt of delta lowers the friction along the slope by delta (1 + tan^2 phi),
+// too): the lighter row blocks stayed up to the 0.4 % of their size at which the position
+// correction started deep in the plane, and the slider rode tilted on them; a tilt of delta lowers the friction along the slope by delta (1 + tan^2 phi),
 // which a slope 1 deg steeper than phi magnifies 17-24 times. Small scenes now correct from
 // 2.5e-4 (control.deep_overlap_ratio's automatic value, forward/options.hpp).
 TEST(HeavySliders, SquatSlidersFromRestCrossFreeRowsAtTenMillisecondsSubstep) {

@@ -5,8 +5,8 @@
 // than its friction angle slides from rest, and one given a velocity along the face slides until
 // its friction stops it. Sliding, its base reaction lies r = tan(phi) H / L of its half-length
 // ahead of its centre (H and L: the block's extents along the face's normal and along the face;
-// r = 1: it topples rather than slides), and at r near 1 it rests on its front corner, which meets every joint of the face
-// first. Measured on tests/test_tall_sliders.cpp's class (slopes of 20-40 deg at 1 deg steeper
+// r = 1: it topples rather than slides), and at r near 1 it rests on its front corner, which
+// meets every joint of the face first. Measured on tests/test_tall_sliders.cpp's class (slopes of 20-40 deg at 1 deg steeper
 // than the friction, joints every 0.1-1 of the slider's length, 1 ms steps): the implicit solver
 // keeps 0.3 m sliders within 1 % of seed Eq. 4 at r = 0.8 and takes them 12-17 % off at r =
 // 0.85, 28-30 % at 0.88 and up to 70 % at 0.9; the substep solver keeps every run within 1.3e-4.
