@@ -114,7 +114,9 @@ void run_implicit(const Scene& scene, BlockSystem& system, RunRecorder& recorder
   };
 
   std::vector<char> struck;  // per block: in an impact this step (resolve_impacts refills it)
+  StepStart step_start;  // the centroids before the step, for the containment check
   while (!recorder.finished(time) && !recorder.interrupted(time, system)) {
+    remember_step_start(system, step_start);
     {
       ScopedTimer timer(profile.find_contacts);
       const std::string problem = detect_contacts(system, ctx.detection, ctx.contacts);
@@ -181,7 +183,7 @@ void run_implicit(const Scene& scene, BlockSystem& system, RunRecorder& recorder
       fail(RunStatus::Failed, problem);
       break;
     }
-    if (const std::string problem = check_containment(system); !problem.empty()) {
+    if (const std::string problem = check_containment(system, &step_start); !problem.empty()) {
       recorder.record_row(time, system);
       fail(RunStatus::Failed, problem);
       break;
