@@ -7,6 +7,6 @@
 
 namespace ddafit {
 
-inline constexpr const char* kModelRevision = "2026-12-05.10";
+inline constexpr const char* kModelRevision = "2026-12-05.11";
 
 }  // namespace ddafit

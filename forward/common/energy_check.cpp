@@ -54,9 +54,9 @@ EnergyAudit start_energy_audit(const BlockSystem& s, const Vec2& gravity) {
 std::string check_energy(const EnergyAudit& audit, const BlockSystem& s, const Vec2& gravity) {
   const double kinetic = kinetic_energy(s);
   const double released = released_energy(audit, s, gravity);
-  const double budget = audit.initial_kinetic + released + audit.load_work;
-  const double scale =
-      audit.initial_kinetic + std::abs(released) + std::abs(audit.load_work) + audit.floor + 1e-300;
+  const double budget = audit.initial_kinetic + released + audit.load_work + audit.stored_contact;
+  const double scale = audit.initial_kinetic + std::abs(released) + std::abs(audit.load_work) + audit.stored_contact +
+                       audit.floor + 1e-300;
   if (kinetic <= std::max(budget, 0.0) + kEnergyTolerance * scale) return {};
   int fastest = -1;
   double speed = -1.0;

@@ -12,6 +12,7 @@
 #include "forward/common/supported_blocks.hpp"
 #include "forward/substep/advance_step.hpp"
 #include "forward/substep/sleep.hpp"
+#include "forward/substep/solve_contacts.hpp"
 #include "forward/substep/step_control.hpp"
 #include "forward/substep/substep_context.hpp"
 
@@ -126,6 +127,16 @@ std::string quiet_start(SubstepContext& w) {
   return {};
 }
 
+// What the overlaps the quiet start leaves can give back as they open, J/m
+// (EnergyAudit::stored_contact): each point's load of the last substep times its depth now.
+double stored_contact_energy(const std::vector<ContactManifold>& manifolds, const std::vector<Vec3>& step_moves) {
+  double energy = 0.0;
+  for (const ContactManifold& m : manifolds)
+    for (int q = 0; q < m.point_count; ++q)
+      energy += m.points[q].normal_load * std::max(0.0, -current_gap(m, m.points[q], step_moves));
+  return energy;
+}
+
 // Every free block asleep (everything_asleep): the blocks stay as they are, so the rest of
 // the run is this state at each output time, recorded without steps.
 void rest_to_the_end(RunRecorder& recorder, double& time, const BlockSystem& s) {
@@ -188,6 +199,7 @@ void run_substep(const Scene& scene, BlockSystem& s, RunRecorder& recorder, Simu
   }
   const long settling_on_one = w.threads.steps_on_one();  // the quiet start's are not the run's
   EnergyAudit audit = start_energy_audit(s, scene.gravity);
+  audit.stored_contact = stored_contact_energy(w.contacts.manifolds, w.state.step_moves);
   recorder.start(s);
   double step = scene.max_step;
   run.smallest_step = scene.max_step;
