@@ -160,5 +160,35 @@ TEST(Rocking, DISABLED_AColumnReleasedOnItsCornerComesToRestSubstep) {
   EXPECT_EQ(r.moving, 0) << r.worst_case;
 }
 
+// KNOWN DEFECT (found 2026-12-05, revision .12.05.11; docs/theory.md Known limits (k)): at long
+// steps the substep solver's quiet start, which steps the scene's own time.step from rest until
+// the impulses settle, lets the block of Housner's test (1 x 4.5 m, tilted 0.5 alpha) fall back
+// onto its base before t = 0: at 0.1 s x 1 and x 4 it starts the run 0.01 deg from upright (of
+// 6.2 deg) and never rocks. At 50 ms it starts where it was given. The block must start the run
+// within 5 % of its tilt (the quiet start's settling of the contacts moves it by micro-radians).
+TEST(Rocking, DISABLED_ABlockReleasedOnItsCornerAtLongStepsStartsWhereItWasGivenSubstep) {
+  for (double step : {0.05, 0.1, 0.2})
+    for (int substeps : {1, 4}) {
+      Scene s = verification::rocking_block_scene();
+      s.duration = 0.5;
+      s.max_step = step;
+      s.output_interval = step;
+      s.options.substeps = substeps;
+      s.options.integrator = Integrator::Substep;
+      const double given = 0.5 * HousnerRocking{1.0, 4.5}.alpha();
+      double at_start = -1.0;
+      SimulationHooks hooks;
+      hooks.on_output = [&](double time, const BlockSystem& system) {
+        if (time > 0.0 || at_start >= 0.0) return;
+        const Block& block = system.blocks[1];
+        const Vec2 base = system.vertices[block.first_vertex + 1] - system.vertices[block.first_vertex];
+        at_start = -std::atan2(base.y(), base.x());  // tilted clockwise: the base edge points down
+      };
+      const SimulationResult r = simulate(s, hooks);
+      ASSERT_EQ(r.summary.status, RunStatus::Completed) << r.summary.message;
+      EXPECT_NEAR(at_start, given, 0.05 * given) << step << " s x " << substeps;
+    }
+}
+
 }  // namespace
 }  // namespace ddafit
