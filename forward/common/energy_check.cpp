@@ -35,6 +35,13 @@ double released_energy(const EnergyAudit& audit, const BlockSystem& s, const Vec
   return work + audit.initial_water - water_potential(s, gravity.norm());
 }
 
+double lifted_energy(const EnergyAudit& audit, const BlockSystem& s, const Vec2& gravity) {
+  double lifted = 0.0;
+  for (int b = 0; b < static_cast<int>(s.blocks.size()); ++b)
+    if (!s.blocks[b].fixed) lifted += std::max(0.0, -audit.mass[b] * gravity.dot(s.blocks[b].centroid - audit.centroid[b]));
+  return lifted;
+}
+
 void add_load_work(EnergyAudit& audit, const Vec2& acceleration, const Vec2& moved) {
   audit.load_work -= acceleration.dot(moved);
 }
@@ -54,8 +61,9 @@ EnergyAudit start_energy_audit(const BlockSystem& s, const Vec2& gravity) {
 std::string check_energy(const EnergyAudit& audit, const BlockSystem& s, const Vec2& gravity) {
   const double kinetic = kinetic_energy(s);
   const double released = released_energy(audit, s, gravity);
-  const double budget = audit.initial_kinetic + released + audit.load_work + audit.stored_contact;
-  const double scale = audit.initial_kinetic + std::abs(released) + std::abs(audit.load_work) + audit.stored_contact +
+  const double returned = std::min(audit.stored_contact, lifted_energy(audit, s, gravity));
+  const double budget = audit.initial_kinetic + released + audit.load_work + returned;
+  const double scale = audit.initial_kinetic + std::abs(released) + std::abs(audit.load_work) + returned +
                        audit.floor + 1e-300;
   if (kinetic <= std::max(budget, 0.0) + kEnergyTolerance * scale) return {};
   int fastest = -1;
