@@ -132,6 +132,21 @@ TEST(Cli, FailedRunExitsThreeWithDiagnosis) {
   EXPECT_EQ(summary.find("nan"), std::string::npos);
 }
 
+// Regression (found 2026-12-05, revision .12.05.9): the stack of cases/verification at one-second
+// steps let its blocks through the ground before the clock ran and reported the run completed,
+// the blocks in free fall. It must stop (exit 3) naming the block, the ground and what to change.
+TEST(Cli, AStackRunAtOneSecondStepsStopsWhereItFallsThroughItsGround) {
+  const std::string stack = std::string(DDAFIT_CASES_DIR) + "/verification/stack.yaml";
+  const fs::path out = fs::path(DDAFIT_TEST_TMP) / "stack_huge_step" / "out";
+  const CommandResult r = ddafit("simulate " + stack + " --set time.step=1 --set time.integrator=substep --set time.substeps=1 --out " +
+                                     out.string() + " --quiet",
+                                 "stack_huge_step");
+  EXPECT_EQ(r.code, 3) << r.err;
+  EXPECT_NE(r.err.find("passed through fixed block 'ground'"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("time.step"), std::string::npos) << r.err;
+  EXPECT_NE(slurp(out / "summary.json").find("\"failed\""), std::string::npos);
+}
+
 TEST(Cli, ShortTimeStepIsWarnedAbout) {
   // 1e-4 s resolves the 2.1 m block's elastic period (1.6 ms): docs/verification.md
   // measured 12 % error there, so the run must say so rather than pass silently.
