@@ -27,7 +27,7 @@ struct EnergyAudit {
   // spring gives back half of that). The substep solver's quiet start leaves its overlaps
   // deeper than its run keeps them at long steps (a two-block stack at 20 ms x 4: 69 um at the
   // floor against 12.5 um once running), so a wall rises as its joints open: the 100-brick
-  // wall of verification::brick_wall_scene by 0.6 mm at its top over 1.6 s at 20 ms x 4, which
+  // wall of verification::brick_wall_scene by 0.6 mm on average over 1.6 s at 20 ms x 4, which
   // at 1.3e5 kg/m debits the budget by hundreds of J/m, more than a brick toppling off its
   // end releases (67 J/m), and the topple read as energy created. It is credited only against
   // the lift (lifted_energy): the overlaps may raise blocks, not set them moving. J/m; 0 when
