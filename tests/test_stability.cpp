@@ -295,7 +295,7 @@ TEST(Stability, AColumnStandsOrStopsWithADiagnosis) {
             s.blocks.resize(1 + count);
             for (int k = 0; k < count; ++k)
               s.blocks[1 + k] = verification::block(
-                  "b" + std::to_string(k + 1),
+                  std::string("b").append(std::to_string(k + 1)),  // GCC 12 -Wrestrict false positive on "b" + string
                   {Vec2(0, k * L), Vec2(L, k * L), Vec2(L, (k + 1) * L), Vec2(0, (k + 1) * L)}, false);
             s.measure[0].at = Vec2(0.5 * L, (count - 0.5) * L);
             s.duration = 2.0;
