@@ -138,9 +138,9 @@ TEST(Cli, FailedRunExitsThreeWithDiagnosis) {
 TEST(Cli, AStackRunAtOneSecondStepsStopsWhereItFallsThroughItsGround) {
   const std::string stack = std::string(DDAFIT_CASES_DIR) + "/verification/stack.yaml";
   const fs::path out = fs::path(DDAFIT_TEST_TMP) / "stack_huge_step" / "out";
-  const CommandResult r = ddafit("simulate " + stack + " --set time.step=1 --set time.integrator=substep --set time.substeps=1 --out " +
-                                     out.string() + " --quiet",
-                                 "stack_huge_step");
+  const std::string settings = " --set time.step=1 --set time.integrator=substep --set time.substeps=1";
+  const CommandResult r =
+      ddafit("simulate " + stack + settings + " --out " + out.string() + " --quiet", "stack_huge_step");
   EXPECT_EQ(r.code, 3) << r.err;
   EXPECT_NE(r.err.find("passed through fixed block 'ground'"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("time.step"), std::string::npos) << r.err;

@@ -231,8 +231,8 @@ TEST(JointCrossingFreeRow, SlidersCrossAFreeRowAtCoarseStepsImplicit) {
             std::snprintf(label, sizeof label, "%g m/s, %g deg (friction %g), slider %g x %g m, row of %g m, %g ms",
                           speed, slope, slide, length, height, row_length, step * 1000);
             ++runs;
-            if (std::string failure = free_row_failure(run_free_row(f, Integrator::Implicit), f, label); !failure.empty())
-              off.push_back(failure);
+            const FreeRowRun run = run_free_row(f, Integrator::Implicit);
+            if (std::string failure = free_row_failure(run, f, label); !failure.empty()) off.push_back(failure);
           }
   for (const std::string& failure : off) ADD_FAILURE() << failure;
   std::printf("[measured] %d sliders on free rows at 10 and 20 ms, implicit: %zu off\n", runs, off.size());

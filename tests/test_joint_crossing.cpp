@@ -373,7 +373,8 @@ TEST_P(ShortBlocksSweep, SlidersFollowSeedEq4AtLongSteps) {
             const double moved = r.history.back().displacement.dot(Slope(c.slope).along);
             const double a = eq4_acceleration(c.slope, c.friction);
             const double exact = rk4_slide([a](double, double) { return a; }, speed, {r.history.back().time}).back();
-            EXPECT_LT(std::abs(moved - exact), kDisplacementTolerance * exact) << label << ": " << moved << " m against " << exact;
+            EXPECT_LT(std::abs(moved - exact), kDisplacementTolerance * exact)
+                << label << ": " << moved << " m against " << exact;
             worst = std::max(worst, std::abs(moved - exact) / exact);
           }
   std::cout << "[measured] " << name_of(GetParam()) << ": sliders at 20 and 50 ms, worst " << worst << " of Eq. 4\n";

@@ -269,7 +269,8 @@ std::vector<WallRun> wall_runs() {
 INSTANTIATE_TEST_SUITE_P(Stability, StandingWallAtLongSteps, ::testing::ValuesIn(wall_runs()),
                          [](const ::testing::TestParamInfo<WallRun>& info) {
                            const WallRun& w = info.param;
-                           return std::string(to_string(w.integrator)) + "Bricks" + std::to_string(w.size * w.size) + "At" +
+                           return std::string(to_string(w.integrator)) + "Bricks" +
+                                  std::to_string(w.size * w.size) + "At" +
                                   std::to_string(static_cast<int>(std::lround(w.step * 1000))) + "msX" +
                                   std::to_string(w.substeps);
                          });

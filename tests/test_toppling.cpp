@@ -68,7 +68,8 @@ void expect_mode(const BlockOnIncline& c, Integrator integrator, double scale, d
 
   RunAudit audit;
   const SimulationResult r = simulate(s, audit_hooks(audit, s.gravity));
-  const std::string label = std::string(c.mode) + " (" + std::to_string(c.slope) + "/" + std::to_string(c.friction) + ", " +
+  const std::string label = std::string(c.mode) + " (" + std::to_string(c.slope) + "/" +
+                            std::to_string(c.friction) + ", " +
                             std::to_string(c.width) + " x " + std::to_string(c.height) + "), " + name_of(integrator) +
                             ", x" + std::to_string(scale) + ", step " + std::to_string(step);
   expect_contact_physics(r, audit, integrator, label);
@@ -97,7 +98,8 @@ void expect_mode(const BlockOnIncline& c, Integrator integrator, double scale, d
     EXPECT_LT(std::abs(last.slip), 1e-3 * L) << label;
   } else if (mode == "slide") {
     EXPECT_LT(early.rotation, 1e-3) << label;
-    EXPECT_NEAR(early.slip, 0.5 * a * early_window * early_window, 0.05 * 0.5 * a * early_window * early_window) << label;
+    const double eq4 = 0.5 * a * early_window * early_window;
+    EXPECT_NEAR(early.slip, eq4, 0.05 * eq4) << label;
     EXPECT_LT(last.rotation, 1e-3) << label;
     EXPECT_GT(last.slip, 0.99 * 0.5 * a * s.duration * s.duration) << label;
   } else {
@@ -110,7 +112,7 @@ void expect_mode(const BlockOnIncline& c, Integrator integrator, double scale, d
       EXPECT_GT(last.slip, 3.0) << label << ": the toppled block did not slide on";
     }
   }
-  std::cout << "[measured] " << label << ": first " << kEarly << " s: rotation " << early.rotation << " rad, slip "
+  std::cout << "[measured] " << label << ": first " << early_window << " s: rotation " << early.rotation << " rad, slip "
             << early.slip << " m; end: rotation " << last.rotation << " rad, slip " << last.slip << " m\n";
 }
 

@@ -38,7 +38,8 @@ double released_energy(const EnergyAudit& audit, const BlockSystem& s, const Vec
 double lifted_energy(const EnergyAudit& audit, const BlockSystem& s, const Vec2& gravity) {
   double lifted = 0.0;
   for (int b = 0; b < static_cast<int>(s.blocks.size()); ++b)
-    if (!s.blocks[b].fixed) lifted += std::max(0.0, -audit.mass[b] * gravity.dot(s.blocks[b].centroid - audit.centroid[b]));
+    if (!s.blocks[b].fixed)
+      lifted += std::max(0.0, -audit.mass[b] * gravity.dot(s.blocks[b].centroid - audit.centroid[b]));
   return lifted;
 }
 

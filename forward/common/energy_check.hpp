@@ -1,8 +1,8 @@
 // An energy audit of the run. DDA's contacts and time scheme can only dissipate, so the
 // kinetic energy may never exceed the initial kinetic energy plus the work gravity has
 // done since t = 0, plus what the contacts' overlaps at t = 0 can give back as they open and
-// lift blocks (EnergyAudit::stored_contact). A run that breaks this is creating energy (a contact pumping blocks
-// apart) and its results are garbage however smoothly it continues.
+// lift blocks (EnergyAudit::stored_contact). A run that breaks this is creating energy (a
+// contact pumping blocks apart) and its results are garbage however smoothly it continues.
 #pragma once
 
 #include <string>
