@@ -82,6 +82,9 @@ struct SolverReport {
   std::string reason;                            // why: the scene's choice or the Auto rule
   int substeps = 0;                              // per step (substep solver)
   double deep_overlap_ratio = 0.0;               // control.deep_overlap_ratio as resolved (substep solver)
+  // J/m: what the quiet start's overlaps can give back by lifting blocks, sum F delta at t = 0; the
+  // energy audit credits it against the blocks that rise (EnergyAudit::stored_contact; substep solver)
+  double stored_contact_energy = 0.0;
   long contact_points = 0;                       // summed over steps (mean = / steps)
   double worst_penetration = 0.0;                // m, deepest overlap at the end of a step
   double worst_penetration_ratio = 0.0;          // that depth / the smaller block's size

@@ -252,8 +252,18 @@ TEST_P(StandingWallAtLongSteps, CompletesAndStands) {
   const SimulationResult r = simulate(scene);
   ASSERT_EQ(r.summary.status, RunStatus::Completed) << r.summary.message;
   EXPECT_LT(r.summary.points[0].max_total_displacement, 0.02);
+  if (w.integrator == Integrator::Substep) {
+    // What the starting overlaps store, as summary.json reports it: loaded joints hold some, and no
+    // more than every course's load (the floor carries the whole wall, the top bed joint a course:
+    // W (n + 1) / 2 in all) times an overlap at the 1 % bound, 5 mm of a 0.5 m course.
+    const double weight = w.size * w.size * 0.5 * scene.materials[0].density * 9.81;
+    const double bound = weight * 0.5 * (w.size + 1) * 0.005;
+    EXPECT_GT(r.summary.solver.stored_contact_energy, 0.0);
+    EXPECT_LT(r.summary.solver.stored_contact_energy, bound);
+  }
   std::cout << "[measured] wall of " << w.size * w.size << " at " << w.step << " s x " << w.substeps << ": top moved "
-            << r.summary.points[0].max_total_displacement << " m\n";
+            << r.summary.points[0].max_total_displacement << " m, stored contact energy "
+            << r.summary.solver.stored_contact_energy << " J/m\n";
 }
 
 std::vector<WallRun> wall_runs() {

@@ -99,6 +99,7 @@ std::string summary_json_text(const std::string& scene_path, const SimulationRes
     const double steps = std::max<double>(1.0, static_cast<double>(s.run.steps));
     j["solver"]["substeps"] = solver.substeps;
     j["solver"]["deep_overlap_ratio"] = solver.deep_overlap_ratio;
+    j["solver"]["stored_contact_energy"] = solver.stored_contact_energy;
     j["solver"]["mean_contact_points"] = static_cast<double>(solver.contact_points) / steps;
     j["solver"]["unconverged_points"] = solver.unconverged_points;
     j["solver"]["fast_steps"] = solver.fast_steps;

@@ -200,6 +200,7 @@ void run_substep(const Scene& scene, BlockSystem& s, RunRecorder& recorder, Simu
   const long settling_on_one = w.threads.steps_on_one();  // the quiet start's are not the run's
   EnergyAudit audit = start_energy_audit(s, scene.gravity);
   audit.stored_contact = stored_contact_energy(w.contacts.manifolds, w.state.step_moves);
+  report.stored_contact_energy = audit.stored_contact;
   recorder.start(s);
   double step = scene.max_step;
   run.smallest_step = scene.max_step;
