@@ -234,7 +234,10 @@ TEST(JointCrossingFreeRow, SlidersCrossAFreeRowAtCoarseStepsImplicit) {
             const FreeRowRun run = run_free_row(f, Integrator::Implicit);
             if (std::string failure = free_row_failure(run, f, label); !failure.empty()) off.push_back(failure);
           }
-  for (const std::string& failure : off) ADD_FAILURE() << failure;
+  EXPECT_EQ(runs, 32);
+  std::string listed;
+  for (const std::string& failure : off) listed += "\n  " + failure;
+  EXPECT_TRUE(off.empty()) << off.size() << " of " << runs << " off seed Eq. 4 or with the row moved:" << listed;
   std::printf("[measured] %d sliders on free rows at 10 and 20 ms, implicit: %zu off\n", runs, off.size());
 }
 

@@ -62,7 +62,9 @@ EnergyAudit start_energy_audit(const BlockSystem& s, const Vec2& gravity) {
 std::string check_energy(const EnergyAudit& audit, const BlockSystem& s, const Vec2& gravity) {
   const double kinetic = kinetic_energy(s);
   const double released = released_energy(audit, s, gravity);
-  const double returned = std::min(audit.stored_contact, lifted_energy(audit, s, gravity));
+  // Nothing stored (the implicit solver, a scene at rest on nothing): no sum over the blocks.
+  const double returned =
+      audit.stored_contact > 0.0 ? std::min(audit.stored_contact, lifted_energy(audit, s, gravity)) : 0.0;
   const double budget = audit.initial_kinetic + released + audit.load_work + returned;
   const double scale = audit.initial_kinetic + std::abs(released) + std::abs(audit.load_work) + returned +
                        audit.floor + 1e-300;
