@@ -71,7 +71,7 @@ TEST(Rocking, ABlockReleasedOnItsCornerRocksAsHousnerSays) {
     double worst_gain = -1.0, worst_loss = 1.0, worst_time = 0.0;
     for (const double aspect : {3.0, 4.5, 6.0})
       for (const double base : {0.5, 2.0})
-        for (const double share : {0.3, 0.6}) {
+        for (const double share : {0.1, 0.3, 0.6}) {
           const Rocking c{base, aspect * base, share, 1, integrator};
           const HousnerRocking housner = c.housner();
           const double rr = housner.energy_kept(), t1 = housner.first_impact(c.tilt());
@@ -160,34 +160,81 @@ TEST(Rocking, DISABLED_AColumnReleasedOnItsCornerComesToRestSubstep) {
   EXPECT_EQ(r.moving, 0) << r.worst_case;
 }
 
-// KNOWN DEFECT (found 2026-12-05, revision .12.05.11; docs/theory.md Known limits (k)): at long
-// steps the substep solver's quiet start, which steps the scene's own time.step from rest until
-// the impulses settle, lets the block of Housner's test (1 x 4.5 m, tilted 0.5 alpha) fall back
-// onto its base before t = 0: at 0.1 s x 1 and x 4 it starts the run 0.01 deg from upright (of
-// 6.2 deg) and never rocks. At 50 ms it starts where it was given. The block must start the run
-// within 5 % of its tilt (the quiet start's settling of the contacts moves it by micro-radians).
-TEST(Rocking, DISABLED_ABlockReleasedOnItsCornerAtLongStepsStartsWhereItWasGivenSubstep) {
-  for (double step : {0.05, 0.1, 0.2})
-    for (int substeps : {1, 4}) {
-      Scene s = verification::rocking_block_scene();
-      s.duration = 0.5;
-      s.max_step = step;
-      s.output_interval = step;
-      s.options.substeps = substeps;
-      s.options.integrator = Integrator::Substep;
-      const double given = 0.5 * HousnerRocking{1.0, 4.5}.alpha();
-      double at_start = -1.0;
-      SimulationHooks hooks;
-      hooks.on_output = [&](double time, const BlockSystem& system) {
-        if (time > 0.0 || at_start >= 0.0) return;
-        const Block& block = system.blocks[1];
-        const Vec2 base = system.vertices[block.first_vertex + 1] - system.vertices[block.first_vertex];
-        at_start = -std::atan2(base.y(), base.x());  // tilted clockwise: the base edge points down
-      };
-      const SimulationResult r = simulate(s, hooks);
-      ASSERT_EQ(r.summary.status, RunStatus::Completed) << r.summary.message;
-      EXPECT_NEAR(at_start, given, 0.05 * given) << step << " s x " << substeps;
-    }
+// Settling before the clock runs must not move a block that is not in equilibrium, at any step a
+// user may pick: a block tilted on its corner starts the run where it was given. The class:
+// Housner blocks of base 0.1, 1 and 10 m, aspect H/b 3 and 6, tilted 0.1, 0.3 and 0.6 of alpha;
+// steps of 20 ms to 0.5 s (one and four substeps on the substep solver). Bound: the tilt at t = 0
+// within 2 % of the given one (settling the contacts turns a block by micro-radians; settling
+// that lets it fall turns it by its whole tilt). Returns the runs that missed, with their labels.
+struct TiltedStart {
+  int runs = 0;
+  std::vector<std::string> missed;
+};
+
+TiltedStart tilted_blocks_start_where_given(Integrator integrator) {
+  TiltedStart out;
+  double worst = 0.0;
+  std::string worst_case;
+  for (const double base : {0.1, 1.0, 10.0})
+    for (const double aspect : {3.0, 6.0})
+      for (const double share : {0.1, 0.3, 0.6})
+        for (const double step : {0.02, 0.05, 0.1, 0.2, 0.5})
+          for (const int substeps : {1, 4}) {
+            if (integrator == Integrator::Implicit && substeps > 1) continue;  // no substeps
+            RockingSetup setup;
+            setup.base = base;
+            setup.height = aspect * base;
+            setup.tilt_share = share;
+            setup.step = step;
+            setup.duration = step;
+            Scene s = verification::rocking_column_scene(setup);
+            s.options.substeps = substeps;
+            s.options.integrator = integrator;
+            const Rocking c{base, aspect * base, share, 1, integrator};
+            char what[200];
+            std::snprintf(what, sizeof what, "%s, %g s x %d", label(c).c_str(), step, substeps);
+            double at_start = -1.0;
+            SimulationHooks hooks;
+            hooks.on_output = [&](double time, const BlockSystem& system) {
+              if (time > 0.0 || at_start >= 0.0) return;
+              const Block& block = system.blocks[1];
+              const Vec2 edge = system.vertices[block.first_vertex + 1] - system.vertices[block.first_vertex];
+              at_start = -std::atan2(edge.y(), edge.x());  // tilted clockwise: the base edge points down
+            };
+            const SimulationResult r = simulate(s, hooks);
+            ++out.runs;
+            if (r.summary.status != RunStatus::Completed) {
+              out.missed.push_back(std::string(what) + ": " + r.summary.message);
+              continue;
+            }
+            const double error = std::abs(at_start / c.tilt() - 1.0);
+            if (error > 0.02) out.missed.push_back(std::string(what) + ": tilt at t = 0 " + std::to_string(error) + " off");
+            if (error > worst) worst = error, worst_case = what;
+          }
+  std::printf("[measured] %d blocks released on a corner at 20 ms - 0.5 s: %zu missed; tilt at t = 0 at most %.3g off "
+              "the given one (%s)\n", out.runs, out.missed.size(), worst, worst_case.c_str());
+  return out;
+}
+
+// The implicit solver's settling (docs/theory.md §6) holds a falling block where it was given: 90
+// runs, every block exactly at its given tilt (measured 2026-12-06).
+TEST(Rocking, ABlockReleasedOnItsCornerStartsWhereItWasGivenAtEveryStepImplicit) {
+  const TiltedStart t = tilted_blocks_start_where_given(Integrator::Implicit);
+  EXPECT_EQ(t.runs, 90);
+  EXPECT_TRUE(t.missed.empty()) << t.missed.size() << " missed, the first: " << t.missed.front();
+}
+
+// KNOWN DEFECT (docs/theory.md Known limits (k); found 2026-12-05 on one block, swept as a class
+// 2026-12-06 at revision 2026-12-05.12): the substep solver's quiet start steps the scene's own
+// time.step from rest until the contacts' impulses stop changing, and a block resting on its corner
+// turns in each step; at these steps the impulse at its corner changes with the turn by more than
+// the quiet start's tolerance, and the block falls onto its base before t = 0 (129 of 180 runs:
+// every 0.1 m block, 1 m blocks from 20-50 ms, 10 m blocks from 0.1-0.5 s; two 0.1 m blocks at
+// 0.5 s x 1 fall through the floor and the containment check stops the run).
+TEST(Rocking, DISABLED_ABlockReleasedOnItsCornerStartsWhereItWasGivenAtEveryStepSubstep) {
+  const TiltedStart t = tilted_blocks_start_where_given(Integrator::Substep);
+  EXPECT_EQ(t.runs, 180);
+  EXPECT_TRUE(t.missed.empty()) << t.missed.size() << " missed, the first: " << t.missed.front();
 }
 
 }  // namespace

@@ -232,7 +232,8 @@ TEST(Stability, ABlockFiredAtAThinPlateNeverPassesIt) {
 // audit now counts what the starting overlaps can give back (EnergyAudit::stored_contact).
 // Every run must complete, and the wall stand: its top course's first brick moves by settling
 // only, within 2 cm (measured at most 8.4 mm, 100 bricks at 50 ms x 2, a step a fifth of a
-// brick's 0.23 s fall through its own height; 1.6 mm or less at 5 ms), with both solvers.
+// brick's 0.23 s fall through its own height; 1.6 mm or less at 5 ms), with both solvers. Over
+// 8 s the wall at 50 ms x 1 does not stand (the known defect below).
 struct WallRun {
   int size;
   double step;
@@ -285,12 +286,29 @@ INSTANTIATE_TEST_SUITE_P(Stability, StandingWallAtLongSteps, ::testing::ValuesIn
                                   std::to_string(w.substeps);
                          });
 
+// KNOWN DEFECT (found 2026-12-06, revision 2026-12-05.12): the 100-brick wall on the substep solver
+// at 50 ms x 1 (one substep a fifth of a brick's fall through its own height) does not stand: its
+// top course's first brick moves 1.8 mm in the 3 s of the test above, 3.4 cm by 5 s and 8.5 cm by
+// 8 s. At 50 ms x 2-4 and at 5-20 ms x 1-4 the wall stays within 8.5 mm over the same 8 s.
+TEST(Stability, DISABLED_AWallStandsForEightSecondsAtFiftyMillisecondsSubstep) {
+  Scene scene = verification::brick_wall_scene(10, 10, 8.0);
+  scene.max_step = 0.05;
+  scene.output_interval = 0.05;
+  scene.options.substeps = 1;
+  scene.options.integrator = Integrator::Substep;
+  const SimulationResult r = simulate(scene);
+  ASSERT_EQ(r.summary.status, RunStatus::Completed) << r.summary.message;
+  EXPECT_LT(r.summary.points[0].max_total_displacement, 0.02);
+}
+
 // Columns of 3 and 10 square blocks of 5 cm, 1 m and 20 m on a fixed ground, 2 s, at 1, 5 and 20 ms
 // with 1 and 3 substeps and on the implicit solver. Every run either completes with the column
 // standing (its top within 1 % of a block: measured at most 0.62 %, ten 1 m blocks at 20 ms x 1,
 // where the column sways at up to 2 cm/s, the rocking column of docs/theory.md §13) or stops with
 // a diagnosis naming the step; at 1 and 5 ms x 3 every substep run completes, and every implicit
 // run. Found 2026-12-05: ten 5 cm cubes at 5 ms x 1 completed with the top moved 9 % of a block.
+// Ten 5 cm cubes on the substep solver complete at 5 ms x 3, but not at every step near it (the
+// known defect after this test).
 TEST(Stability, AColumnStandsOrStopsWithADiagnosis) {
   int stopped = 0, runs = 0;
   double worst[2] = {0.0, 0.0};  // the top's largest move over the block's size, substep and implicit
@@ -332,6 +350,34 @@ TEST(Stability, AColumnStandsOrStopsWithADiagnosis) {
           }
   std::cout << "[measured] columns: " << stopped << " of " << runs << " runs stopped with a diagnosis; the top moved "
             << worst[0] << " of a block at most (substep), " << worst[1] << " (implicit)\n";
+}
+
+// KNOWN DEFECT (the rocking column of docs/theory.md §13, found as a class 2026-12-06, revision
+// 2026-12-05.12): a column of ten 5 cm cubes on the substep solver at 2-10 ms x 3 sways until the
+// energy audit stops it: over 4 s it stopped at 3, 4, 6, 7 and 10 ms and stood at 2, 5 and 8 ms
+// (within 0.23 % of a block). It must complete standing (its top within 1 % of a block, the class
+// test's bound) at every step.
+TEST(Stability, DISABLED_AColumnOfTenFiveCentimetreCubesStandsAtEveryStepSubstep) {
+  for (double step : {0.002, 0.003, 0.004, 0.005, 0.006, 0.008, 0.01}) {
+    const double L = 0.05;
+    Scene s = verification::stack_scene();
+    s.blocks[0].polygon = {Vec2(-2 * L, -L), Vec2(3 * L, -L), Vec2(3 * L, 0), Vec2(-2 * L, 0)};
+    s.blocks.resize(11);
+    for (int k = 0; k < 10; ++k)
+      s.blocks[1 + k] = verification::block(
+          std::string("b").append(std::to_string(k + 1)),  // GCC 12 -Wrestrict false positive on "b" + string
+          {Vec2(0, k * L), Vec2(L, k * L), Vec2(L, (k + 1) * L), Vec2(0, (k + 1) * L)}, false);
+    s.measure[0].at = Vec2(0.5 * L, 9.5 * L);
+    s.duration = 4.0;
+    s.max_step = step;
+    s.output_interval = 0.05;
+    s.options.substeps = 3;
+    s.options.integrator = Integrator::Substep;
+    const SimulationResult r = simulate(s);
+    EXPECT_EQ(r.summary.status, RunStatus::Completed) << step << " s: " << r.summary.message;
+    if (r.summary.status != RunStatus::Completed) continue;
+    EXPECT_LT(r.summary.points[0].max_total_displacement, 0.01 * L) << step << " s";
+  }
 }
 
 // A block dropped flat onto a fixed floor stays down (DDA's contacts are perfectly plastic): blocks
