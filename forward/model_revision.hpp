@@ -7,6 +7,6 @@
 
 namespace ddafit {
 
-inline constexpr const char* kModelRevision = "2026-12-05.12";
+inline constexpr const char* kModelRevision = "2026-12-06.1";
 
 }  // namespace ddafit

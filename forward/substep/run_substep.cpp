@@ -127,6 +127,46 @@ std::string quiet_start(SubstepContext& w) {
   return {};
 }
 
+// Blocks that the quiet start turned by more than this, rad, are named in a warning: the run
+// starts them away from where they were given (docs/theory.md, Known limits (k)). Vajont's
+// sections at their own steps turn no block by more than 7.1e-3 rad there (section X); a block
+// resting on its corner at too long a step turns by its whole tilt (tests/test_rocking.cpp).
+constexpr double kQuietStartTurnWarning = 0.01;
+// The step, as a share of sqrt(L / |g|) (L a block's size, the square root of its area), up to
+// which a block resting on its corner keeps its tilt through the quiet start: at 0.03 every block
+// of the class of tests/test_rocking.cpp (0.1-10 m, H/b 3 and 6, tilted 0.1-0.6 of its critical
+// angle, one and four substeps) starts within 0.7 % of its tilt; at 0.05 those tilted 0.1 fall.
+constexpr double kKeepsTiltStepRatio = 0.03;
+
+// The warning for the block the quiet start turned most, if it turned more than
+// kQuietStartTurnWarning; `given` holds the vertices before the quiet start.
+std::string quiet_start_warning(const Scene& scene, const BlockSystem& s, const std::vector<Vec2>& given) {
+  double most = 0.0;
+  int which = -1;
+  for (int b = 0; b < static_cast<int>(s.blocks.size()); ++b) {
+    const Block& block = s.blocks[b];
+    if (block.fixed) continue;
+    const Vec2 before = given[block.first_vertex + 1] - given[block.first_vertex];
+    const Vec2 after = s.vertices[block.first_vertex + 1] - s.vertices[block.first_vertex];
+    const double turn = std::abs(std::atan2(before.x() * after.y() - before.y() * after.x(), before.dot(after)));
+    if (turn > most) most = turn, which = b;
+  }
+  if (which < 0 || most <= kQuietStartTurnWarning) return {};
+  const double size = std::sqrt(s.blocks[which].area), g = scene.gravity.norm();
+  std::ostringstream out;
+  out.precision(3);
+  out << "block '" << s.block_names[which] << "' turned " << most * 180.0 / M_PI
+      << " deg before t = 0, while the contacts took up the weight from rest (the quiet start): it is not in "
+         "equilibrium where it was given, and the run starts it turned (docs/theory.md, known limits (k)); "
+         "time.step "
+      << scene.max_step << " s is long for it";
+  if (g > 0.0)
+    out << " (a block of its size, " << size << " m, keeps its tilt at steps up to about "
+        << kKeepsTiltStepRatio * std::sqrt(size / g) << " s)";
+  out << ", or use time.integrator: implicit";
+  return out.str();
+}
+
 // What the overlaps the quiet start leaves can give back as they open, J/m
 // (EnergyAudit::stored_contact): each point's load of the last substep times its depth now.
 double stored_contact_energy(const std::vector<ContactManifold>& manifolds, const std::vector<Vec3>& step_moves) {
@@ -192,11 +232,14 @@ void run_substep(const Scene& scene, BlockSystem& s, RunRecorder& recorder, Simu
   double time = 0.0;
   StepStart step_start;  // the centroids before a step, for the containment check
   remember_step_start(s, step_start);
+  const std::vector<Vec2> given_vertices = s.vertices;
   if (std::string problem = quiet_start(w); !problem.empty()) {
     summary.status = RunStatus::InvalidScene;
     summary.message = "t = 0: " + problem;
     return;
   }
+  if (std::string turned = quiet_start_warning(scene, s, given_vertices); !turned.empty())
+    summary.warnings.push_back(std::move(turned));
   const long settling_on_one = w.threads.steps_on_one();  // the quiet start's are not the run's
   EnergyAudit audit = start_energy_audit(s, scene.gravity);
   audit.stored_contact = stored_contact_energy(w.contacts.manifolds, w.state.step_moves);
