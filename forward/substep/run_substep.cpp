@@ -157,13 +157,14 @@ std::string quiet_start_warning(const Scene& scene, const BlockSystem& s, const 
   out.precision(3);
   out << "block '" << s.block_names[which] << "' turned " << most * 180.0 / M_PI
       << " deg before t = 0, while the contacts took up the weight from rest (the quiet start): it is not in "
-         "equilibrium where it was given, and the run starts it turned (docs/theory.md, known limits (k)); "
-         "time.step "
-      << scene.max_step << " s is long for it";
-  if (g > 0.0)
-    out << " (a block of its size, " << size << " m, keeps its tilt at steps up to about "
-        << kKeepsTiltStepRatio * std::sqrt(size / g) << " s)";
-  out << ", or use time.integrator: implicit";
+         "equilibrium where it was given, and the run starts it turned (docs/theory.md, known limits (k)); ";
+  const double keeps = g > 0.0 ? kKeepsTiltStepRatio * std::sqrt(size / g) : 0.0;
+  if (scene.max_step > keeps && keeps > 0.0)
+    out << "time.step " << scene.max_step << " s is long for it (a block of its size, " << size
+        << " m, resting on a corner keeps its tilt at steps up to about " << keeps << " s), or use ";
+  else
+    out << "use ";
+  out << "time.integrator: implicit, whose settling holds a falling block where it was given";
   return out.str();
 }
 
