@@ -221,7 +221,8 @@ TiltedStart tilted_blocks_start_where_given(Integrator integrator) {
             if (turned > 0.01 && !warned) out.unwarned.push_back(what);
             if (turned < 1e-3 && warned) out.warned_wrongly.push_back(what);
             const double error = std::abs(at_start / c.tilt() - 1.0);
-            if (error > 0.02) out.missed.push_back(std::string(what) + ": tilt at t = 0 " + std::to_string(error) + " off");
+            if (error > 0.02)
+              out.missed.push_back(std::string(what) + ": tilt at t = 0 " + std::to_string(error) + " off");
             if (error > worst) worst = error, worst_case = what;
           }
   std::printf("[measured] %d blocks released on a corner at 20 ms - 0.5 s: %zu missed; tilt at t = 0 at most %.3g off "
@@ -248,7 +249,8 @@ TEST(Rocking, ABlockTheQuietStartTurnsIsNamedInAWarningSubstep) {
   EXPECT_EQ(t.runs, 180);
   EXPECT_GT(t.warned, 0);
   EXPECT_TRUE(t.unwarned.empty()) << t.unwarned.size() << " unwarned, the first: " << t.unwarned.front();
-  EXPECT_TRUE(t.warned_wrongly.empty()) << t.warned_wrongly.size() << " warned, the first: " << t.warned_wrongly.front();
+  EXPECT_TRUE(t.warned_wrongly.empty())
+      << t.warned_wrongly.size() << " warned, the first: " << t.warned_wrongly.front();
 }
 
 // KNOWN DEFECT (docs/theory.md Known limits (k); found 2026-12-05 on one block, swept as a class
