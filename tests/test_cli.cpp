@@ -134,17 +134,20 @@ TEST(Cli, FailedRunExitsThreeWithDiagnosis) {
 
 // Regression (found 2026-12-05, revision .12.05.9): the stack of cases/verification at one-second
 // steps let its blocks through the ground before the clock ran and reported the run completed,
-// the blocks in free fall. It must stop (exit 3) naming the block, the ground and what to change.
-TEST(Cli, AStackRunAtOneSecondStepsStopsWhereItFallsThroughItsGround) {
+// the blocks in free fall. From revision .12.05.10 it stopped (exit 3) naming block b2 and the
+// ground; since .12.06.2 a quiet start that turns a block (here as the stack falls) is done again
+// at steps of 0.03 sqrt(L / |g|), 9.6 ms for these 1 m blocks, and the stack stands: exit 0, its
+// top within 5 mm (measured 2.5 mm, the joints settling to the run's steps' depth).
+TEST(Cli, AStackRunAtOneSecondStepsStandsOnItsGround) {
   const std::string stack = std::string(DDAFIT_CASES_DIR) + "/verification/stack.yaml";
   const fs::path out = fs::path(DDAFIT_TEST_TMP) / "stack_huge_step" / "out";
   const std::string settings = " --set time.step=1 --set time.integrator=substep --set time.substeps=1";
   const CommandResult r =
       ddafit("simulate " + stack + settings + " --out " + out.string() + " --quiet", "stack_huge_step");
-  EXPECT_EQ(r.code, 3) << r.err;
-  EXPECT_NE(r.err.find("passed through fixed block 'ground'"), std::string::npos) << r.err;
-  EXPECT_NE(r.err.find("time.step"), std::string::npos) << r.err;
-  EXPECT_NE(slurp(out / "summary.json").find("\"failed\""), std::string::npos);
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto j = nlohmann::json::parse(slurp(out / "summary.json"));
+  EXPECT_EQ(j["status"].get<std::string>(), "completed");
+  EXPECT_LT(j["points"]["top"]["max_total_displacement"].get<double>(), 0.005);
 }
 
 TEST(Cli, ShortTimeStepIsWarnedAbout) {

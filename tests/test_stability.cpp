@@ -157,14 +157,21 @@ TEST(Stability, SubstepSolverFailsWithADiagnosisNeverWithGarbage) {
 // and saw only a centroid inside a fixed block). From revision 2026-12-05.10 the check also runs
 // after the quiet start, and it follows each free block's centroid along the straight line of
 // its move (common/containment_check.hpp): a run either holds the stack or stops with a
-// diagnosis. A completed run must not have moved the stack's top by more than a block. (Stopping
-// a run once a free block lies wholly below every fixed block, tried first, also stopped 18
-// enabled tests whose blocks rightly end below their fixed ones.)
+// diagnosis. (Stopping a run once a free block lies wholly below every fixed block, tried first,
+// also stopped 18 enabled tests whose blocks rightly end below their fixed ones.) Since revision
+// 2026-12-06.2 a quiet start that turns a block by more than 0.01 rad, as a falling stack does, is
+// done again at steps of 0.03 sqrt(L / |g|) (9.6 ms here): every run completes with the stack
+// standing, its top within 5 mm.
 TEST(Stability, AStackRunAtHugeStepsNeverFallsThroughItsGround) {
   const auto map = verification::substep_stability_map({0.3, 0.5, 1.0}, {1, 2});
   for (const auto& p : map)
-    if (p.scene == "stack" && p.completed) {
-      EXPECT_LT(p.error, 1.0) << p.time_step << " s x " << p.substeps;
+    if (p.scene == "stack") {
+      std::cout << "[measured] stack at " << p.time_step << " s x " << p.substeps << ": "
+                << (p.completed ? "top moved " + std::to_string(p.error) + " m" : p.diagnosis) << "\n";
+      EXPECT_TRUE(p.completed) << p.time_step << " s x " << p.substeps << ": " << p.diagnosis;
+      if (p.completed) {
+        EXPECT_LT(p.error, 0.005) << p.time_step << " s x " << p.substeps;
+      }
     }
 }
 
@@ -231,8 +238,9 @@ TEST(Stability, ABlockFiredAtAThinPlateNeverPassesIt) {
 // (the top course's last, its centroid over its support's corner) toppling as it must. The
 // audit now counts what the starting overlaps can give back (EnergyAudit::stored_contact).
 // Every run must complete, and the wall stand: its top course's first brick moves by settling
-// only, within 2 cm (measured at most 8.4 mm, 100 bricks at 50 ms x 2, a step a fifth of a
-// brick's 0.23 s fall through its own height; 1.6 mm or less at 5 ms), with both solvers. Over
+// only, within 2 cm (measured at most 8.2 mm, 400 bricks at 20 ms x 1; 8.4 mm at 50 ms x 2 until
+// revision 2026-12-06.2 did its quiet start again at shorter steps, 1.65 mm since; 1.6 mm or less
+// at 5 ms), with both solvers. Over
 // 8 s the wall at 50 ms x 1 does not stand (the known defect below).
 struct WallRun {
   int size;

@@ -11,6 +11,7 @@
 #include "forward/common/energy_check.hpp"
 #include "forward/common/supported_blocks.hpp"
 #include "forward/substep/advance_step.hpp"
+#include "forward/substep/quiet_start.hpp"
 #include "forward/substep/sleep.hpp"
 #include "forward/substep/solve_contacts.hpp"
 #include "forward/substep/step_control.hpp"
@@ -22,19 +23,6 @@ namespace {
 // A run stops when an overlap passes this fraction of the smaller block's size: the two
 // blocks are then no longer separated by their contact (a block passing through another).
 constexpr double kFailPenetrationRatio = 0.25;
-
-// The quiet start stops once no point's normal impulse changes over a step by more than
-// kQuietStartTolerance of the largest, or after kQuietStartSteps steps. A slope that is
-// not in equilibrium never gets there (its blocks slide a little between the restarts
-// from rest): on Vajont section I the change fell to 0.4 % within 100 steps and on section
-// VII to ~10 % within 50, and neither improved later. The full 500 steps are still needed:
-// section IV released after 100 bounced, its kinetic energy reaching 4e7 J/m
-// within 3 steps while its centroids rose (the audit stops that); after 300 it ran.
-// A heavy block on a light one (mass ratio 100) needs the 1e-4: stopped at 1e-3 it rocked
-// itself up within 0.06 s (test_substep_scenes.cpp); at 1e-4 it settles within 100
-// steps and moves 2 um.
-constexpr int kQuietStartSteps = 500;
-constexpr double kQuietStartTolerance = 1e-4;
 
 // Position correction after each step (solve_contacts.hpp): passes; the share of an
 // overlap's excess removed per pass (from the overlap it starts at, control.deep_overlap_ratio
@@ -51,122 +39,6 @@ constexpr int kCorrectionPasses = 8;
 constexpr int kCorrectionExtraPasses = 8;
 constexpr double kCorrectionFraction = 0.8;
 constexpr double kCorrectionShare = 0.5;
-
-// The normal impulses of the last substep, point by point in manifold order.
-void last_normal_impulses(const std::vector<ContactManifold>& manifolds, std::vector<double>& out) {
-  out.clear();
-  for (const ContactManifold& m : manifolds)
-    for (int q = 0; q < m.point_count; ++q) out.push_back(m.points[q].impulse.normal);
-}
-
-// Largest change of any point's normal impulse over the step, relative to the largest:
-// `before` holds the impulses each point carried into the step (zero for a new point).
-double impulse_change(const std::vector<ContactManifold>& manifolds, const std::vector<double>& before) {
-  double largest = 0.0, change = 0.0;
-  size_t i = 0;
-  for (const ContactManifold& m : manifolds)
-    for (int q = 0; q < m.point_count; ++q, ++i) {
-      largest = std::max(largest, std::abs(m.points[q].impulse.normal));
-      change = std::max(change, std::abs(m.points[q].impulse.normal - before[i]));
-    }
-  return largest > 0.0 ? change / largest : 0.0;
-}
-
-// Quiet start: the contacts touching at t = 0 take up the weight before the clock runs, for
-// the blocks resting on the ground (common/supported_blocks.hpp).
-// Steps of the scene's length with those blocks at rest before each (a given velocity
-// waits for the clock: until revision 2026-11-27.7 the first step carried a touching block
-// v dt before t = 0, 5 cm for a block given 5 m/s at 10 ms, tests/test_impact_depth.cpp), their
-// strain following their contacts, until no normal impulse changes by more than
-// kQuietStartTolerance of the largest. Blocks in flight stay exactly as given, held still:
-// through revision 2026-11-27.8 they kept their velocity while held, so a block given 2 m/s
-// 1 mm above a stack pressed it down 5.6 mm through the quiet start and the impulses built up
-// launched everything at the first step (tests/test_impact_rebound.cpp); the
-// measurement points' origins move with the blocks, and no slip is counted: the slide
-// starts from rest, not with a bounce.
-std::string quiet_start(SubstepContext& w) {
-  BlockSystem& s = w.system;
-  CollideSettings& settings = w.detection.settings;
-  ScopedTimer timer(w.profile->settle);
-  StepProfile* const run_profile = w.profile;
-  StepProfile ignored;
-  w.profile = &ignored;
-  const auto restore = [&] { w.profile = run_profile; };
-  if (std::string problem = find_step_contacts(w); !problem.empty()) {
-    restore();
-    return problem;
-  }
-  const std::vector<char> resting = supported_blocks(s, w.contacts.manifolds, settings.linear_slop);
-  std::vector<Vec6> initial(s.blocks.size());
-  std::vector<char> was_fixed(s.blocks.size());
-  for (size_t b = 0; b < s.blocks.size(); ++b) {
-    initial[b] = s.blocks[b].velocity;
-    was_fixed[b] = s.blocks[b].fixed;
-    if (!resting[b]) s.blocks[b].fixed = true;  // in flight: takes no part
-  }
-  std::vector<double> before;
-  w.settling = true;
-  for (int k = 0; k < kQuietStartSteps; ++k) {
-    w.threads.begin_step();
-    if (k > 0) find_step_contacts(w);
-    last_normal_impulses(w.contacts.manifolds, before);
-    for (size_t b = 0; b < s.blocks.size(); ++b)  // held blocks too: a held block's velocity
-      if (!was_fixed[b]) s.blocks[b].velocity.setZero();  // still drives its contacts
-    advance_step(w, w.scene.max_step, false);
-    w.threads.end_step();
-    if (impulse_change(w.contacts.manifolds, before) <= kQuietStartTolerance) break;
-  }
-  w.settling = false;
-  for (size_t b = 0; b < s.blocks.size(); ++b) {
-    s.blocks[b].fixed = was_fixed[b];
-    s.blocks[b].velocity = initial[b];
-  }
-  reset_histories(s, w.contacts);
-  settings.first_step = true;  // bonds form between the blocks touching once settled
-  restore();
-  return {};
-}
-
-// Blocks that the quiet start turned by more than this, rad, are named in a warning: the run
-// starts them away from where they were given (docs/theory.md, Known limits (k)). Vajont's
-// sections at their own steps turn no block by more than 7.1e-3 rad there (section X); a block
-// resting on its corner at too long a step turns by its whole tilt (tests/test_rocking.cpp).
-constexpr double kQuietStartTurnWarning = 0.01;
-// The step, as a share of sqrt(L / |g|) (L a block's size, the square root of its area), up to
-// which a block resting on its corner keeps its tilt through the quiet start: at 0.03 every block
-// of the class of tests/test_rocking.cpp (0.1-10 m, H/b 3 and 6, tilted 0.1-0.6 of its critical
-// angle, one and four substeps) starts within 0.7 % of its tilt; at 0.05 those tilted 0.1 fall.
-constexpr double kKeepsTiltStepRatio = 0.03;
-
-// The warning for the block the quiet start turned most, if it turned more than
-// kQuietStartTurnWarning; `given` holds the vertices before the quiet start.
-std::string quiet_start_warning(const Scene& scene, const BlockSystem& s, const std::vector<Vec2>& given) {
-  double most = 0.0;
-  int which = -1;
-  for (int b = 0; b < static_cast<int>(s.blocks.size()); ++b) {
-    const Block& block = s.blocks[b];
-    if (block.fixed) continue;
-    const Vec2 before = given[block.first_vertex + 1] - given[block.first_vertex];
-    const Vec2 after = s.vertices[block.first_vertex + 1] - s.vertices[block.first_vertex];
-    const double turn = std::abs(std::atan2(before.x() * after.y() - before.y() * after.x(), before.dot(after)));
-    if (turn > most) most = turn, which = b;
-  }
-  if (which < 0 || most <= kQuietStartTurnWarning) return {};
-  const double size = std::sqrt(s.blocks[which].area), g = scene.gravity.norm();
-  std::ostringstream out;
-  out.precision(3);
-  out << "block '" << s.block_names[which] << "' turned " << most * 180.0 / M_PI
-      << " deg before t = 0, while the contacts took up the weight from rest (the quiet start): it is not in "
-         "equilibrium where it was given, and the run starts it turned (docs/theory.md, known limits (k)); ";
-  const double keeps = g > 0.0 ? kKeepsTiltStepRatio * std::sqrt(size / g) : 0.0;
-  if (scene.max_step > keeps && keeps > 0.0)
-    out << "time.step " << scene.max_step << " s is long for it (a block of its size, " << size
-        << " m, resting on a corner keeps its tilt at steps up to about " << keeps << " s), or use ";
-  else
-    out << "use ";
-  out << "time.integrator: implicit, whose settling holds a falling block where it was given";
-  return out.str();
-}
 
 // What the overlaps the quiet start leaves can give back as they open, J/m
 // (EnergyAudit::stored_contact): each point's load of the last substep times its depth now.
@@ -233,14 +105,11 @@ void run_substep(const Scene& scene, BlockSystem& s, RunRecorder& recorder, Simu
   double time = 0.0;
   StepStart step_start;  // the centroids before a step, for the containment check
   remember_step_start(s, step_start);
-  const std::vector<Vec2> given_vertices = s.vertices;
-  if (std::string problem = quiet_start(w); !problem.empty()) {
+  if (std::string problem = settle_before_the_clock(w, summary.warnings); !problem.empty()) {
     summary.status = RunStatus::InvalidScene;
     summary.message = "t = 0: " + problem;
     return;
   }
-  if (std::string turned = quiet_start_warning(scene, s, given_vertices); !turned.empty())
-    summary.warnings.push_back(std::move(turned));
   const long settling_on_one = w.threads.steps_on_one();  // the quiet start's are not the run's
   EnergyAudit audit = start_energy_audit(s, scene.gravity);
   audit.stored_contact = stored_contact_energy(w.contacts.manifolds, w.state.step_moves);
