@@ -5,8 +5,8 @@
 // after Box2D v3's soft step, with DDA blocks: each block keeps Shi's six unknowns and
 // answers an impulse through its effective inverse mass (substep_types.hpp). Cost grows
 // with the number of contact points, not with a global factorisation. The step's stages
-// are advance_step.hpp's; this file holds the run loop, the quiet start before the clock
-// runs, and the end of a run whose blocks all sleep.
+// are advance_step.hpp's, the quiet start before the clock runs quiet_start.hpp's; this file
+// holds the run loop and the end of a run whose blocks all sleep.
 #pragma once
 
 #include "forward/block_system.hpp"
