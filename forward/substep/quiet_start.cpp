@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <sstream>
 #include <utility>
 
@@ -123,17 +124,30 @@ std::pair<int, double> most_turned(const BlockSystem& s, const std::vector<Vec2>
   return {which, most};
 }
 
-// The step at which a block resting on its corner keeps its tilt through the quiet start, for
-// the smallest free block (kKeepsTiltStepRatio); the scene's step if that is shorter or there
-// is no gravity.
+// The step up to which a block of size `size` (m) resting on its corner keeps its tilt through
+// the quiet start under gravity `g` (m/s^2); infinite without gravity.
+double keeps_tilt_step(double size, double g) {
+  return g > 0.0 ? kKeepsTiltStepRatio * std::sqrt(size / g) : std::numeric_limits<double>::infinity();
+}
+
+// That step for the smallest free block, or the scene's step if that is shorter.
 double tilt_keeping_step(const Scene& scene, const BlockSystem& s) {
   double smallest = std::numeric_limits<double>::infinity();
   for (const Block& b : s.blocks)
     if (!b.fixed) smallest = std::min(smallest, std::sqrt(b.area));
-  const double g = scene.gravity.norm();
-  if (!(g > 0.0) || !std::isfinite(smallest)) return scene.max_step;
-  return std::min(scene.max_step, kKeepsTiltStepRatio * std::sqrt(smallest / g));
+  if (!std::isfinite(smallest)) return scene.max_step;
+  return std::min(scene.max_step, keeps_tilt_step(smallest, scene.gravity.norm()));
 }
+
+// What the quiet start changes, as given, so that it can be done again.
+struct GivenState {
+  BlockSystem system;
+  ContactSet contacts;
+  SweepState state;
+  SleepState sleep;
+  WorstOverlap worst;
+  SolverReport report;
+};
 
 }  // namespace
 
@@ -141,26 +155,23 @@ std::string settle_before_the_clock(SubstepContext& w, std::vector<std::string>&
   BlockSystem& s = w.system;
   const Scene& scene = w.scene;
   const std::vector<Vec2> given_vertices = s.vertices;
-  const BlockSystem given = s;
-  const ContactSet given_contacts = w.contacts;
-  const SweepState given_state = w.state;
-  const SleepState given_sleep = w.sleep;
-  const WorstOverlap given_worst = w.worst;
-  const SolverReport given_report = w.report;
-  if (std::string problem = settle_from_rest(w, scene.max_step); !problem.empty()) return problem;
   // A block turned by the quiet start at the scene's step: settle again from the given scene at
   // steps that keep a block on its corner where it is (model revision 2026-12-06.2). Stacks and
   // Vajont's sections turn no block that far (1.0e-3 and 7.1e-3 rad at most) and keep their
   // quiet start; at the shorter steps a standing stack would sink after t = 0 from the shorter
-  // steps' joint depth, about 1.5 g h^2 (docs/theory.md, Known limits (k)).
+  // steps' joint depth, about 1.5 g h^2 (docs/theory.md, Known limits (k)). Where the scene's
+  // step is already that short (every Vajont section) nothing is kept to do it again.
   const double keeps = tilt_keeping_step(scene, s);
-  if (most_turned(s, given_vertices).second > kQuietStartTurnLimit && keeps < scene.max_step) {
-    s = given;
-    w.contacts = given_contacts;
-    w.state = given_state;
-    w.sleep = given_sleep;
-    w.worst = given_worst;
-    w.report = given_report;
+  std::optional<GivenState> given;
+  if (keeps < scene.max_step) given = GivenState{s, w.contacts, w.state, w.sleep, w.worst, w.report};
+  if (std::string problem = settle_from_rest(w, scene.max_step); !problem.empty()) return problem;
+  if (given && most_turned(s, given_vertices).second > kQuietStartTurnLimit) {
+    s = std::move(given->system);
+    w.contacts = std::move(given->contacts);
+    w.state = std::move(given->state);
+    w.sleep = std::move(given->sleep);
+    w.worst = given->worst;
+    w.report = std::move(given->report);
     w.last_substep = 0.0;
     if (std::string problem = settle_from_rest(w, keeps); !problem.empty()) return problem;
   }
@@ -172,14 +183,14 @@ std::string settle_before_the_clock(SubstepContext& w, std::vector<std::string>&
 std::string quiet_start_warning(const Scene& scene, const BlockSystem& s, const std::vector<Vec2>& given) {
   const auto [which, most] = most_turned(s, given);
   if (which < 0 || most <= kQuietStartTurnLimit) return {};
-  const double size = std::sqrt(s.blocks[which].area), g = scene.gravity.norm();
+  const double size = std::sqrt(s.blocks[which].area);
   std::ostringstream out;
   out.precision(3);
   out << "block '" << s.block_names[which] << "' turned " << most * 180.0 / M_PI
       << " deg before t = 0, while the contacts took up the weight from rest (the quiet start): it is not in "
          "equilibrium where it was given, and the run starts it turned (docs/theory.md, known limits (k)); ";
-  const double keeps = g > 0.0 ? kKeepsTiltStepRatio * std::sqrt(size / g) : 0.0;
-  if (scene.max_step > keeps && keeps > 0.0)
+  const double keeps = keeps_tilt_step(size, scene.gravity.norm());
+  if (scene.max_step > keeps)
     out << "time.step " << scene.max_step << " s is long for it (a block of its size, " << size
         << " m, resting on a corner keeps its tilt at steps up to about " << keeps << " s), or use ";
   else
@@ -187,6 +198,5 @@ std::string quiet_start_warning(const Scene& scene, const BlockSystem& s, const 
   out << "time.integrator: implicit, whose settling holds a falling block where it was given";
   return out.str();
 }
-
 
 }  // namespace ddafit

@@ -9,7 +9,6 @@
 #include "forward/contact/slip_history.hpp"
 #include "forward/common/containment_check.hpp"
 #include "forward/common/energy_check.hpp"
-#include "forward/common/supported_blocks.hpp"
 #include "forward/substep/advance_step.hpp"
 #include "forward/substep/quiet_start.hpp"
 #include "forward/substep/sleep.hpp"
