@@ -309,6 +309,21 @@ TEST(Stability, DISABLED_AWallStandsForEightSecondsAtFiftyMillisecondsSubstep) {
   EXPECT_LT(r.summary.points[0].max_total_displacement, 0.02);
 }
 
+// verification::stack_scene with `count` square blocks of side `size` (m) on a ground 5 sizes
+// wide, its measured point in the top block's middle.
+Scene column_scene(double size, int count) {
+  const double L = size;
+  Scene s = verification::stack_scene();
+  s.blocks[0].polygon = {Vec2(-2 * L, -L), Vec2(3 * L, -L), Vec2(3 * L, 0), Vec2(-2 * L, 0)};
+  s.blocks.resize(1 + count);
+  for (int k = 0; k < count; ++k)
+    s.blocks[1 + k] = verification::block(
+        std::string("b").append(std::to_string(k + 1)),  // GCC 12 -Wrestrict false positive on "b" + string
+        {Vec2(0, k * L), Vec2(L, k * L), Vec2(L, (k + 1) * L), Vec2(0, (k + 1) * L)}, false);
+  s.measure[0].at = Vec2(0.5 * L, (count - 0.5) * L);
+  return s;
+}
+
 // Columns of 3 and 10 square blocks of 5 cm, 1 m and 20 m on a fixed ground, 2 s, at 1, 5 and 20 ms
 // with 1 and 3 substeps and on the implicit solver. Every run either completes with the column
 // standing (its top within 1 % of a block: measured at most 0.62 %, ten 1 m blocks at 20 ms x 1,
@@ -326,15 +341,7 @@ TEST(Stability, AColumnStandsOrStopsWithADiagnosis) {
         for (double step : {0.001, 0.005, 0.02})
           for (int substeps : {1, 3}) {
             if (integrator == Integrator::Implicit && substeps > 1) continue;
-            Scene s = verification::stack_scene();
-            const double L = size;
-            s.blocks[0].polygon = {Vec2(-2 * L, -L), Vec2(3 * L, -L), Vec2(3 * L, 0), Vec2(-2 * L, 0)};
-            s.blocks.resize(1 + count);
-            for (int k = 0; k < count; ++k)
-              s.blocks[1 + k] = verification::block(
-                  std::string("b").append(std::to_string(k + 1)),  // GCC 12 -Wrestrict false positive on "b" + string
-                  {Vec2(0, k * L), Vec2(L, k * L), Vec2(L, (k + 1) * L), Vec2(0, (k + 1) * L)}, false);
-            s.measure[0].at = Vec2(0.5 * L, (count - 0.5) * L);
+            Scene s = column_scene(size, count);
             s.duration = 2.0;
             s.max_step = step;
             s.output_interval = std::max(0.05, step);
@@ -368,14 +375,7 @@ TEST(Stability, AColumnStandsOrStopsWithADiagnosis) {
 TEST(Stability, DISABLED_AColumnOfTenFiveCentimetreCubesStandsAtEveryStepSubstep) {
   for (double step : {0.002, 0.003, 0.004, 0.005, 0.006, 0.008, 0.01}) {
     const double L = 0.05;
-    Scene s = verification::stack_scene();
-    s.blocks[0].polygon = {Vec2(-2 * L, -L), Vec2(3 * L, -L), Vec2(3 * L, 0), Vec2(-2 * L, 0)};
-    s.blocks.resize(11);
-    for (int k = 0; k < 10; ++k)
-      s.blocks[1 + k] = verification::block(
-          std::string("b").append(std::to_string(k + 1)),  // GCC 12 -Wrestrict false positive on "b" + string
-          {Vec2(0, k * L), Vec2(L, k * L), Vec2(L, (k + 1) * L), Vec2(0, (k + 1) * L)}, false);
-    s.measure[0].at = Vec2(0.5 * L, 9.5 * L);
+    Scene s = column_scene(L, 10);
     s.duration = 4.0;
     s.max_step = step;
     s.output_interval = 0.05;
