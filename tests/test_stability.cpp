@@ -104,7 +104,7 @@ TEST(Stability, TimeStepWarningMarksTheInaccurateRuns) {
   // displacement off by more than 1 %, or the acceleration curve (the friction the block
   // feels) by more than 2 % -- at 0.2 ms the spurious vibration lowers the friction by
   // 7 % while the displacement is still within 1 %. Accurate runs stay within 1 % on both.
-  const auto map = verification::incline_stability_map({50.0}, {1e-4, 2e-4, 5e-4, 1e-3, 2e-3, 5e-3});
+  const auto map = verification::incline_stability_map({50.0}, {2e-5, 5e-5, 1e-4, 2e-4, 5e-4, 1e-3, 2e-3, 5e-3});
   for (const auto& p : map) {
     const bool inaccurate = !(p.displacement_error <= 0.01) || !(p.acceleration_error <= 0.02);
     EXPECT_EQ(p.warned, inaccurate) << "time step " << p.time_step << ": displacement error "

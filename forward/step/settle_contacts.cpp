@@ -11,9 +11,9 @@
 #include "forward/step/assemble.hpp"
 #include "forward/step/new_points.hpp"
 #include "forward/step/point_springs.hpp"
+#include "forward/step/settle_sliding.hpp"
 
 namespace ddafit {
-namespace {
 
 // The contacts now carry the static load; their springs start from here. Settling holds
 // every point locked, so where friction cannot hold the slope the shear springs store the
@@ -47,6 +47,8 @@ void load_springs(const BlockSystem& s, ContactSet& contacts, const StepParamete
     }
   }
 }
+
+namespace {
 
 // A block whose pass moves it at least this share of its move in the pass before is falling,
 // not settling: on its way to equilibrium every pass shrinks the distance by the factor of
@@ -189,18 +191,25 @@ bool settle_contacts(ImplicitStepContext& ctx, const StepParameters& step, doubl
   const std::vector<Vec2> vertices = s.vertices;
   const std::vector<MaterialPoint> points = s.points;
   const ContactSet contacts = ctx.contacts;
-  std::vector<char> falling(s.blocks.size(), 0);
+  std::vector<char> falling(s.blocks.size(), 0), settles;
   Settled result = Settled::Done;
+  bool as_given = false;
   for (int attempt = 0; attempt <= kFallingRestarts; ++attempt) {
-    std::vector<char> settles = supported;
+    settles = supported;
     result = run_passes(ctx, relaxed, max_shift, settles, falling, problem);
     if (result != Settled::Falling) break;
     s.blocks = blocks, s.vertices = vertices, s.points = points, ctx.contacts = contacts;
     for (size_t b = 0; b < s.blocks.size(); ++b) s.blocks[b].velocity.setZero();
-    if (attempt == kFallingRestarts) result = Settled::Done;  // the state as given
+    if (attempt == kFallingRestarts) result = Settled::Done, as_given = true;  // the state as given
   }
   for (size_t b = 0; b < s.blocks.size(); ++b) s.blocks[b].velocity = velocities[b];
   load_springs(s, ctx.contacts, step);
+  if (result == Settled::Done && !as_given && problem.empty()) {
+    // The blocks that start sliding, settled again as they slide (settle_sliding.hpp).
+    std::vector<char> settled(s.blocks.size(), 0);
+    for (size_t b = 0; b < s.blocks.size(); ++b) settled[b] = settles[b] && !falling[b];
+    settle_sliding_groups(ctx, relaxed, step, settled, max_shift);
+  }
   return result != Settled::Failed;
 }
 

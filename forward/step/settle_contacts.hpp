@@ -40,4 +40,9 @@ constexpr double kSettleTolerance = 1e-5;
 // On ctx.system, ctx.detection and ctx.contacts, control.settle_passes passes at most.
 bool settle_contacts(ImplicitStepContext& ctx, const StepParameters& step, double max_shift, std::string& problem);
 
+// Loads the springs of the settled contacts: each point's normal force from its overlap, and
+// points whose locked shear exceeds their Coulomb cap, or whose blocks are given a velocity
+// along them, set sliding at the cap. Also used by settle_sliding.cpp after each of its passes.
+void load_springs(const BlockSystem& s, ContactSet& contacts, const StepParameters& step);
+
 }  // namespace ddafit

@@ -1,0 +1,257 @@
+#include "forward/step/settle_sliding.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+#include "forward/common/displace_block.hpp"
+#include "forward/kinematics.hpp"
+#include "forward/step/point_springs.hpp"
+#include "forward/step/settle_contacts.hpp"
+
+namespace ddafit {
+namespace {
+
+// A point carries load when its normal force is above this share of the largest one: points
+// at rest beside each other (the flush sides of a row of cubes) have no normal force, and
+// their "sliding" is no slide of a block.
+constexpr double kLoadedShare = 1e-6;
+
+// The passes stop once a pass moves no block by more than this share of the first pass's
+// largest move. Not settle_contacts' share of max_shift: that scales with the model (2.5 mm
+// for a 200 m block on a 10 km plane, where the start then ran 1.5 % off seed Eq. 4).
+constexpr double kSlidingTolerance = 1e-3;
+
+// The passes' step, as a multiple of settle_contacts' (itself kSettleStepScale times the run's):
+// the blocks' inertia, 2 M / dt^2, only slows the passes down here, since d'Alembert's loads
+// balance each group along its slip. At settle_contacts' step a 200 x 50 m frictionless slab
+// took 28 passes (its strain moving by a fifth less each pass); at ten times it, 4.
+constexpr double kSlidingStepScale = 10.0;
+
+// Two faces are parallel when the sine of the angle between them is under this (0.06 deg).
+constexpr double kParallelSine = 1e-3;
+
+struct SlidingGroups {
+  std::vector<int> group;       // per block: its group, -1 if not settled or fixed
+  std::vector<Vec2> tangent;    // per group: the direction it slides in along its face, zero if none
+  bool resolved = true;         // false: a group slides on faces that are not parallel
+  bool any = false;             // a group slides
+};
+
+// The direction along m.tangent in which block `b` (of the manifold) moves against the other.
+double side(const ContactManifold& m, int b) { return b == m.block_b ? 1.0 : -1.0; }
+
+int find(std::vector<int>& parent, int i) {
+  while (parent[i] != i) i = parent[i] = parent[parent[i]];
+  return i;
+}
+
+// The settled free blocks joined by loaded locked points, and the face each group slides on
+// (its loaded sliding points against blocks outside it).
+SlidingGroups sliding_groups(const BlockSystem& s, const ContactSet& contacts, const std::vector<char>& settled) {
+  const int n = static_cast<int>(s.blocks.size());
+  const auto member = [&](int b) { return s.blocks[b].unknown >= 0 && settled[b]; };
+  double largest = 0.0;
+  for (const ContactManifold& m : contacts.manifolds)
+    for (int q = 0; q < m.point_count; ++q) largest = std::max(largest, m.points[q].spring.normal_force);
+  const auto loaded = [&](const ContactPoint& p) {
+    return p.spring.state != ContactState::Open && p.spring.normal_force > kLoadedShare * largest;
+  };
+  std::vector<int> parent(n);
+  std::iota(parent.begin(), parent.end(), 0);
+  for (const ContactManifold& m : contacts.manifolds)
+    for (int q = 0; q < m.point_count; ++q)
+      if (loaded(m.points[q]) && m.points[q].spring.state == ContactState::Locked && member(m.block_a) &&
+          member(m.block_b))
+        parent[find(parent, m.block_a)] = find(parent, m.block_b);
+  SlidingGroups g;
+  g.group.assign(n, -1);
+  std::vector<int> id(n, -1);
+  for (int b = 0; b < n; ++b) {
+    if (!member(b)) continue;
+    const int root = find(parent, b);
+    if (id[root] < 0) id[root] = static_cast<int>(g.tangent.size()), g.tangent.emplace_back(Vec2::Zero());
+    g.group[b] = id[root];
+  }
+  // Each sliding point tells the direction its group slips in: s along the tangent for block b
+  // against a (SpringState::slip_direction). A group whose points slip both ways along one face
+  // (a block at rest whose base corners spread apart under its own weight, Poisson's ratio)
+  // is not sliding.
+  std::vector<char> both_ways(g.tangent.size(), 0);
+  for (const ContactManifold& m : contacts.manifolds)
+    for (int q = 0; q < m.point_count; ++q) {
+      const SpringState& c = m.points[q].spring;
+      if (!loaded(m.points[q]) || c.state != ContactState::Sliding || c.slip_direction == 0.0) continue;
+      for (const int b : {m.block_a, m.block_b}) {
+        const int k = g.group[b];
+        const int other = b == m.block_a ? m.block_b : m.block_a;
+        if (k < 0 || g.group[other] == k) continue;
+        const Vec2 slips = side(m, b) * c.slip_direction * m.tangent;
+        Vec2& t = g.tangent[k];
+        if (t.isZero()) {
+          t = slips;
+        } else if (std::abs(t.x() * slips.y() - t.y() * slips.x()) > kParallelSine) {
+          g.resolved = false;
+        } else if (t.dot(slips) < 0.0) {
+          both_ways[k] = 1;
+        }
+      }
+    }
+  for (size_t k = 0; k < g.tangent.size(); ++k) {
+    if (both_ways[k]) g.tangent[k].setZero();
+    g.any = g.any || !g.tangent[k].isZero();
+  }
+  return g;
+}
+
+// Every loaded point between a sliding group and a block outside it, on a face parallel to the
+// group's slip, slides with it at its cap: a point the settling left locked under its cap (the
+// less loaded corner of a block, or one found again by the detection) would otherwise hold the
+// block back in its first step and set it turning.
+void slide_whole_faces(const BlockSystem& s, ContactSet& contacts, const SlidingGroups& g, const StepParameters& step) {
+  double largest = 0.0;
+  for (const ContactManifold& m : contacts.manifolds)
+    for (int q = 0; q < m.point_count; ++q) largest = std::max(largest, m.points[q].spring.normal_force);
+  for (ContactManifold& m : contacts.manifolds) {
+    for (const int b : {m.block_a, m.block_b}) {
+      const int k = g.group[b];
+      const int other = b == m.block_a ? m.block_b : m.block_a;
+      if (k < 0 || g.group[other] == k || g.tangent[k].isZero()) continue;
+      const Vec2& t = g.tangent[k];
+      if (std::abs(t.x() * m.tangent.y() - t.y() * m.tangent.x()) > kParallelSine) continue;
+      for (int q = 0; q < m.point_count; ++q) {
+        ContactPoint& p = m.points[q];
+        SpringState& c = p.spring;
+        if (c.state == ContactState::Open || c.normal_force <= kLoadedShare * largest) continue;
+        c.state = ContactState::Sliding;
+        c.slip_direction = side(m, b) * (t.dot(m.tangent) > 0.0 ? 1.0 : -1.0);
+        c.shear_offset = sliding_shear_offset(s.interfaces[m.interface], m, p, step.shear_penalty);
+      }
+    }
+  }
+}
+
+// d'Alembert's load on each block of a sliding group: -m_i a t, a the group's net force along
+// its slip t over its mass. F's translation rows hold each block's net force at D = 0 (gravity,
+// the springs' present forces and the sliding points' friction; assemble.hpp, with the blocks'
+// velocities zero); the forces between blocks of the group cancel in the sum. Returns false,
+// and adds nothing, if a group is held by its friction (its net force points against its slip)
+// or is given a velocity: this stage settles blocks that start sliding from rest. (Tried on
+// blocks given a velocity too, it changed what a row struck by a square block sliding at its
+// tipping limit, friction 45 deg, does: rebounds of 13 % of the impact speed, over the 11 % of
+// tests/test_impact_rows.cpp, with the blocks listed in reverse.)
+bool add_inertial_loads(const BlockSystem& s, const SlidingGroups& g, const std::vector<Vec6>& velocities,
+                        Eigen::VectorXd& f) {
+  const size_t groups = g.tangent.size();
+  std::vector<double> along(groups, 0.0), mass(groups, 0.0), moving(groups, 0.0);
+  for (int b = 0; b < static_cast<int>(s.blocks.size()); ++b) {
+    const int k = g.group[b];
+    if (k < 0 || g.tangent[k].isZero()) continue;
+    along[k] += g.tangent[k].dot(f.segment<2>(6 * s.blocks[b].unknown));
+    mass[k] += s.mass(b);
+    moving[k] += velocities[b].head<3>().norm();
+  }
+  for (size_t k = 0; k < groups; ++k)
+    if (along[k] < 0.0 || moving[k] != 0.0) return false;
+  for (int b = 0; b < static_cast<int>(s.blocks.size()); ++b) {
+    const int k = g.group[b];
+    if (k < 0 || g.tangent[k].isZero()) continue;
+    f.segment<2>(6 * s.blocks[b].unknown) -= s.mass(b) * (along[k] / mass[k]) * g.tangent[k];
+  }
+  return true;
+}
+
+}  // namespace
+
+int settle_sliding_groups(ImplicitStepContext& ctx, const StepParameters& relaxed, const StepParameters& step,
+                          const std::vector<char>& settled, double max_shift) {
+  BlockSystem& s = ctx.system;
+  if (!sliding_groups(s, ctx.contacts, settled).any) return 0;
+  // What a failed attempt goes back to.
+  const std::vector<Block> blocks = s.blocks;
+  const std::vector<Vec2> vertices = s.vertices;
+  const std::vector<MaterialPoint> points = s.points;
+  const ContactSet contacts = ctx.contacts;
+  const auto restore = [&] { s.blocks = blocks, s.vertices = vertices, s.points = points, ctx.contacts = contacts; };
+  std::vector<Vec6> velocities(s.blocks.size());
+  for (size_t b = 0; b < s.blocks.size(); ++b) velocities[b] = s.blocks[b].velocity;
+  const auto set_velocities = [&](bool given) {
+    for (size_t b = 0; b < s.blocks.size(); ++b) s.blocks[b].velocity = given ? velocities[b] : Vec6::Zero();
+  };
+  GlobalSystem eq;
+  StepParameters quasi = relaxed;
+  quasi.time_step *= kSlidingStepScale;
+  int pass = 0;
+  double first = 0.0;  // the first pass's largest move
+  while (pass < ctx.options.settle_passes) {
+    const SlidingGroups g = sliding_groups(s, ctx.contacts, settled);
+    if (!g.resolved) {
+      restore();
+      return 0;
+    }
+    if (!g.any) break;
+    slide_whole_faces(s, ctx.contacts, g, step);
+    ++pass;
+    set_velocities(false);  // a static pass: no inertia carried in
+    assemble(s, ctx.contacts, quasi, eq);
+    if (!add_inertial_loads(s, g, velocities, eq.f)) {  // friction holds a group: it does not slide
+      restore();
+      return 0;
+    }
+    std::string reason;
+    if (!ctx.solver.solve(eq.k, eq.f, eq.d, reason)) {
+      restore();
+      return 0;
+    }
+    // Only the settled blocks move (a block in flight is left as given, as in settle_contacts).
+    Eigen::VectorXd moved = eq.d;
+    double largest = 0.0;
+    for (int b = 0; b < static_cast<int>(s.blocks.size()); ++b) {
+      if (s.blocks[b].unknown < 0) continue;
+      auto db = moved.segment<6>(6 * s.blocks[b].unknown);
+      if (!settled[b]) db.setZero();
+      largest = std::max(largest, block_displacement(s, b, db));
+    }
+    if (largest > max_shift) {
+      restore();
+      return 0;
+    }
+    for (ContactManifold& m : ctx.contacts.manifolds)
+      for (int q = 0; q < m.point_count; ++q) {
+        ContactPoint& p = m.points[q];
+        if (p.spring.state != ContactState::Locked) continue;
+        const PointSprings lin = point_springs(s, m, p);
+        p.spring.shear_offset +=
+            lin.shear_move(block_step(s.blocks[m.block_a], moved), block_step(s.blocks[m.block_b], moved));
+      }
+    for (int b = 0; b < static_cast<int>(s.blocks.size()); ++b)
+      if (s.blocks[b].unknown >= 0 && settled[b])
+        displace_block(s, b, moved.segment<6>(6 * s.blocks[b].unknown), false);
+    // New and closing points lock where they are, as in settle_contacts' passes.
+    ctx.detection.settings.first_step = true;
+    const std::string problem = detect_contacts(s, ctx.detection, ctx.contacts);
+    if (!problem.empty()) {
+      restore();
+      return 0;
+    }
+    for (ContactManifold& m : ctx.contacts.manifolds)
+      for (int q = 0; q < m.point_count; ++q) {
+        ContactPoint& p = m.points[q];
+        if (p.spring.state == ContactState::Open && p.separation <= ctx.detection.settings.linear_slop) {
+          p.spring.state = ContactState::Locked;
+          p.spring.shear_offset = 0.0;
+        }
+      }
+    set_velocities(true);  // load_springs reads them: blocks given a velocity slide from the start
+    load_springs(s, ctx.contacts, step);
+    if (pass == 1) first = largest;
+    if (largest <= kSlidingTolerance * first) break;
+  }
+  // The last detection may have found points again, locked: they slide with their group too.
+  if (const SlidingGroups g = sliding_groups(s, ctx.contacts, settled); g.resolved && g.any)
+    slide_whole_faces(s, ctx.contacts, g, step);
+  set_velocities(true);
+  return pass;
+}
+
+}  // namespace ddafit
