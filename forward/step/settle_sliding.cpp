@@ -46,8 +46,8 @@ int find(std::vector<int>& parent, int i) {
   return i;
 }
 
-// The settled free blocks joined by loaded locked points, and the face each group slides on
-// (its loaded sliding points against blocks outside it).
+// The settled free blocks joined by loaded points, and the direction each group slides in (its
+// loaded sliding points against blocks outside it).
 SlidingGroups sliding_groups(const BlockSystem& s, const ContactSet& contacts, const std::vector<char>& settled) {
   const int n = static_cast<int>(s.blocks.size());
   const auto member = [&](int b) { return s.blocks[b].unknown >= 0 && settled[b]; };
@@ -59,10 +59,12 @@ SlidingGroups sliding_groups(const BlockSystem& s, const ContactSet& contacts, c
   };
   std::vector<int> parent(n);
   std::iota(parent.begin(), parent.end(), 0);
+  // Joined through sliding points too: blocks stacked on a sliding block slide with it (with
+  // the same friction at their joint they do not slip on it; a weaker joint's block, which
+  // would, is left unbalanced and the passes give up, settle_sliding_groups).
   for (const ContactManifold& m : contacts.manifolds)
     for (int q = 0; q < m.point_count; ++q)
-      if (loaded(m.points[q]) && m.points[q].spring.state == ContactState::Locked && member(m.block_a) &&
-          member(m.block_b))
+      if (loaded(m.points[q]) && member(m.block_a) && member(m.block_b))
         parent[find(parent, m.block_a)] = find(parent, m.block_b);
   SlidingGroups g;
   g.group.assign(n, -1);

@@ -12,7 +12,7 @@
 // creating energy"; 90 x 24 m blocks ran 5-100 % off seed Eq. 4; a 10 m block 12 %.
 //
 // Here the settling is done again with the sliding points at their cap, in the frame of each
-// sliding group (the settled free blocks joined by their loaded locked points): each block
+// sliding group (the settled free blocks joined by their loaded points): each block
 // carries d'Alembert's load -m_i a, a the group's acceleration along the face it slides on,
 // the net force along that face over the group's mass (seed Eq. 4 for one block). The group is
 // then in equilibrium, and the settling finds the normal forces, rotations and strains it slides
