@@ -41,6 +41,14 @@ struct SlidingGroups {
 // The direction along m.tangent in which block `b` (of the manifold) moves against the other.
 double side(const ContactManifold& m, int b) { return b == m.block_b ? 1.0 : -1.0; }
 
+// The largest normal force of any point: kLoadedShare is a share of it.
+double largest_normal_force(const ContactSet& contacts) {
+  double largest = 0.0;
+  for (const ContactManifold& m : contacts.manifolds)
+    for (int q = 0; q < m.point_count; ++q) largest = std::max(largest, m.points[q].spring.normal_force);
+  return largest;
+}
+
 int find(std::vector<int>& parent, int i) {
   while (parent[i] != i) i = parent[i] = parent[parent[i]];
   return i;
@@ -51,9 +59,7 @@ int find(std::vector<int>& parent, int i) {
 SlidingGroups sliding_groups(const BlockSystem& s, const ContactSet& contacts, const std::vector<char>& settled) {
   const int n = static_cast<int>(s.blocks.size());
   const auto member = [&](int b) { return s.blocks[b].unknown >= 0 && settled[b]; };
-  double largest = 0.0;
-  for (const ContactManifold& m : contacts.manifolds)
-    for (int q = 0; q < m.point_count; ++q) largest = std::max(largest, m.points[q].spring.normal_force);
+  const double largest = largest_normal_force(contacts);
   const auto loaded = [&](const ContactPoint& p) {
     return p.spring.state != ContactState::Open && p.spring.normal_force > kLoadedShare * largest;
   };
@@ -111,9 +117,7 @@ SlidingGroups sliding_groups(const BlockSystem& s, const ContactSet& contacts, c
 // less loaded corner of a block, or one found again by the detection) would otherwise hold the
 // block back in its first step and set it turning.
 void slide_whole_faces(const BlockSystem& s, ContactSet& contacts, const SlidingGroups& g, const StepParameters& step) {
-  double largest = 0.0;
-  for (const ContactManifold& m : contacts.manifolds)
-    for (int q = 0; q < m.point_count; ++q) largest = std::max(largest, m.points[q].spring.normal_force);
+  const double largest = largest_normal_force(contacts);
   for (ContactManifold& m : contacts.manifolds) {
     for (const int b : {m.block_a, m.block_b}) {
       const int k = g.group[b];
@@ -145,16 +149,16 @@ void slide_whole_faces(const BlockSystem& s, ContactSet& contacts, const Sliding
 bool add_inertial_loads(const BlockSystem& s, const SlidingGroups& g, const std::vector<Vec6>& velocities,
                         Eigen::VectorXd& f) {
   const size_t groups = g.tangent.size();
-  std::vector<double> along(groups, 0.0), mass(groups, 0.0), moving(groups, 0.0);
+  std::vector<double> along(groups, 0.0), mass(groups, 0.0), speed(groups, 0.0);
   for (int b = 0; b < static_cast<int>(s.blocks.size()); ++b) {
     const int k = g.group[b];
     if (k < 0 || g.tangent[k].isZero()) continue;
     along[k] += g.tangent[k].dot(f.segment<2>(6 * s.blocks[b].unknown));
     mass[k] += s.mass(b);
-    moving[k] += velocities[b].head<3>().norm();
+    speed[k] += velocities[b].head<3>().norm();
   }
   for (size_t k = 0; k < groups; ++k)
-    if (along[k] < 0.0 || moving[k] != 0.0) return false;
+    if (along[k] < 0.0 || speed[k] != 0.0) return false;
   for (int b = 0; b < static_cast<int>(s.blocks.size()); ++b) {
     const int k = g.group[b];
     if (k < 0 || g.tangent[k].isZero()) continue;
