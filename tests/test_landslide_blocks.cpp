@@ -117,12 +117,11 @@ TEST(LandslideBlocks, AStackOfTwoSlidesAsOneAsSeedEq4SaysImplicit) {
       expect_contact_physics(r, audit, Integrator::Implicit, label);
       // Both measure points (the lower block's centre, then the upper's) against Eq. 4.
       const double a = eq4_acceleration(slope, friction);
-      double worst = 0.0;
-      for (const HistoryRow& row : r.history) {
-        const double exact = 0.5 * a * row.time * row.time;
-        if (exact < 0.01) continue;
-        worst = std::max(worst, std::abs(row.displacement.dot(face.along) - exact) / exact);
-      }
+      const double worst = slide_error(r, face, [a](const std::vector<double>& times) {
+                             std::vector<double> exact;
+                             for (const double t : times) exact.push_back(0.5 * a * t * t);
+                             return exact;
+                           }).worst;
       EXPECT_LT(worst, kDisplacementTolerance) << label;
       std::cout << "[measured] " << label << ": worst " << worst << " of seed Eq. 4\n";
     }
