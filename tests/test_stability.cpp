@@ -98,21 +98,29 @@ TEST(Stability, TouchingGroupsWithoutInterfaceAreReportedAtStart) {
 }
 
 TEST(Stability, TimeStepWarningMarksTheInaccurateRuns) {
-  // With the default penalty, the runs that miss the incline's analytic curve (seed Eq. 5)
-  // are exactly those that carry the short-time-step warning: the warning is the user's
-  // only sign that a completed run is wrong (docs/verification.md). Inaccurate: the
-  // displacement off by more than 1 %, or the acceleration curve (the friction the block
-  // feels) by more than 2 % -- at 0.2 ms the spurious vibration lowers the friction by
-  // 7 % while the displacement is still within 1 %. Accurate runs stay within 1 % on both.
-  const auto map = verification::incline_stability_map({50.0}, {2e-5, 5e-5, 1e-4, 2e-4, 5e-4, 1e-3, 2e-3, 5e-3});
+  // The short-step warning is the user's only sign that a completed run is wrong (docs/theory.md,
+  // Known limits (a)): with the default penalty, no run it spares may be inaccurate on the seed's
+  // incline (seed Eq. 5) -- the displacement off by more than 1 %, or the acceleration curve (the
+  // friction the block feels) by more than 2 % -- and the runs it spares stay within 1 % on both.
+  // Since the sliding settle (model revision 2026-12-06.3 to .5) the incline holds down to 5 us
+  // (0.003 of its elastic period; measured 0.0015 % / 0.0085 %), and the warning (below 0.01 L/c)
+  // is cautious here; where runs do go wrong is at landslide size
+  // (tests/test_landslide_blocks.cpp, TheTimeStepWarningMarksWhereLandslideBlocksGoWrong).
+  const auto map =
+      verification::incline_stability_map({50.0}, {5e-6, 1e-5, 2e-5, 5e-5, 1e-4, 2e-4, 5e-4, 1e-3, 2e-3, 5e-3});
+  int warned = 0;
   for (const auto& p : map) {
     const bool inaccurate = !(p.displacement_error <= 0.01) || !(p.acceleration_error <= 0.02);
-    EXPECT_EQ(p.warned, inaccurate) << "time step " << p.time_step << ": displacement error "
-                                    << p.displacement_error << ", acceleration error " << p.acceleration_error;
+    if (inaccurate) {
+      EXPECT_TRUE(p.warned) << "time step " << p.time_step << ": displacement error " << p.displacement_error
+                            << ", acceleration error " << p.acceleration_error;
+    }
     if (!p.warned) {
       EXPECT_LE(p.acceleration_error, 0.01) << "time step " << p.time_step;
     }
+    warned += p.warned;
   }
+  EXPECT_EQ(warned, 2) << "the warning comes below 0.01 L/c = 16 us: the 5 and 10 us runs";
 }
 
 TEST(Stability, SubstepSolverFailsWithADiagnosisNeverWithGarbage) {

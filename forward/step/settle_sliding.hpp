@@ -11,7 +11,8 @@
 // block on a 35 deg face (even without friction) stopped at its 9th step on "contacts are
 // creating energy"; 90 x 24 m blocks ran 5-100 % off seed Eq. 4; a 10 m block 12 %.
 //
-// Here the settling is done again with the sliding points at their cap, in the frame of each
+// Here the settling is done again with the sliding points at their cap (and the points of a group
+// whose weight along its one face exceeds that face's caps, set sliding), in the frame of each
 // sliding group (the settled free blocks joined by their loaded points): each block
 // carries d'Alembert's load -m_i a, a the group's acceleration along the face it slides on,
 // the net force along that face over the group's mass (seed Eq. 4 for one block). The group is
