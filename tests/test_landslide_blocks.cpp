@@ -131,10 +131,10 @@ TEST(LandslideBlocks, AStackOfTwoSlidesAsOneAsSeedEq4SaysImplicit) {
 
 // The short-step warning (forward/simulation.cpp, below 0.01 L/c of the largest free block) marks
 // where these sliders go wrong. Measured 2026-12-06 through `ddafit simulate` with an output at
-// every step (/tmp probes, not kept): the class of the test above at 0.003 and 0.005 L/c ran up to
-// 53 % and 78 % off seed Eq. 4 (a 90 x 24 m slider on 35 deg at 33 deg, on one fixed block), at
-// 0.007 L/c within 2.2e-4, at 0.01 L/c 1.4e-6. Here: at 0.02 L/c the run is within 1 % and carries
-// no warning; at 0.005 L/c it carries it.
+// every step (/tmp probes, not kept): the class of the test above at 0.005 L/c ran up to 78 % off
+// seed Eq. 4 (a 200 x 50 m slider on 35 deg at 33 deg, on one fixed block), at 0.003 L/c a 90 x 24 m
+// one 53 %; at 0.007 L/c all within 2.2e-4, at 0.01 L/c 1.4e-6. Here, on the 90 m slider of that
+// face: at 0.02 L/c the run is within 1 % and carries no warning; at 0.005 L/c it carries it.
 TEST(LandslideBlocks, TheTimeStepWarningMarksWhereLandslideBlocksGoWrong) {
   Crossing c;
   c.slope = 35.0, c.friction = 33.0, c.length = 90.0, c.height = 24.0, c.spacing = 1e4, c.front_gap = 5e3;
