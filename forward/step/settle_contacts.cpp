@@ -48,6 +48,28 @@ void load_springs(const BlockSystem& s, ContactSet& contacts, const StepParamete
   }
 }
 
+std::string apply_settling_pass(ImplicitStepContext& ctx, const Eigen::VectorXd& d, const std::vector<char>& moves) {
+  BlockSystem& s = ctx.system;
+  // The locked springs' offsets follow the pass; settling is not part of the measured motion,
+  // so the points' origins move with the blocks.
+  Eigen::VectorXd moved = d;
+  for (int b = 0; b < static_cast<int>(s.blocks.size()); ++b)
+    if (s.blocks[b].unknown >= 0 && !moves[b]) moved.segment<6>(6 * s.blocks[b].unknown).setZero();
+  for (ContactManifold& m : ctx.contacts.manifolds)
+    for (int q = 0; q < m.point_count; ++q) {
+      ContactPoint& p = m.points[q];
+      if (p.spring.state != ContactState::Locked) continue;
+      const PointSprings lin = point_springs(s, m, p);
+      p.spring.shear_offset +=
+          lin.shear_move(block_step(s.blocks[m.block_a], moved), block_step(s.blocks[m.block_b], moved));
+    }
+  for (int b = 0; b < static_cast<int>(s.blocks.size()); ++b)
+    if (s.blocks[b].unknown >= 0 && moves[b])
+      displace_block(s, b, moved.segment<6>(6 * s.blocks[b].unknown), false);
+  ctx.detection.settings.first_step = true;  // points new and touching lock
+  return detect_contacts(s, ctx.detection, ctx.contacts);
+}
+
 namespace {
 
 // A block whose pass moves it at least this share of its move in the pass before is falling,
@@ -133,26 +155,12 @@ Settled run_passes(ImplicitStepContext& ctx, const StepParameters& relaxed, doub
     }
     if (largest > max_shift) break;
     const bool converged = largest <= kSettleTolerance * max_shift;
-    // The locked springs' offsets follow the pass; settling is not part of the measured
-    // motion, so the points' origins move with the blocks.
-    Eigen::VectorXd moved = d;
-    for (int b = 0; b < static_cast<int>(s.blocks.size()); ++b)
-      if (s.blocks[b].unknown >= 0 && !moving(b)) moved.segment<6>(6 * s.blocks[b].unknown).setZero();
-    for (ContactManifold& m : contacts.manifolds)
-      for (int q = 0; q < m.point_count; ++q) {
-        ContactPoint& p = m.points[q];
-        if (p.spring.state == ContactState::Open) continue;
-        const PointSprings lin = point_springs(s, m, p);
-        p.spring.shear_offset += lin.shear_move(block_step(s.blocks[m.block_a], moved), block_step(s.blocks[m.block_b], moved));
-      }
-    for (int b = 0; b < static_cast<int>(s.blocks.size()); ++b)
-      if (moving(b)) displace_block(s, b, unknowns(b), false);
+    std::vector<char> moves(s.blocks.size(), 0);
+    for (int b = 0; b < static_cast<int>(s.blocks.size()); ++b) moves[b] = moving(b);
     // A point that was open and now penetrates closes (locked where it is, no shear
     // offset), or the next pass would let the blocks sink through each other and the first
     // dynamic step would fire them apart.
-    detection.settings.first_step = true;
-    problem = detect_contacts(s, detection, contacts);
-    detection.settings.first_step = true;
+    problem = apply_settling_pass(ctx, d, moves);
     if (!problem.empty()) return Settled::Done;
     // (A point new in this detection that touches was locked by the detection itself.)
     for (ContactManifold& m : contacts.manifolds)

@@ -45,4 +45,10 @@ bool settle_contacts(ImplicitStepContext& ctx, const StepParameters& step, doubl
 // along them, set sliding at the cap. Also used by settle_sliding.cpp after each of its passes.
 void load_springs(const BlockSystem& s, ContactSet& contacts, const StepParameters& step);
 
+// One settling pass applied (settle_contacts' passes, settle_sliding.cpp's): the blocks marked in
+// `moves` move by their part of `d` (as settling, not measured motion), the locked points' shear
+// offsets take up the slip, and the contacts are detected again with first_step set, so that new
+// touching points lock. Returns the detection's problem, empty if none.
+std::string apply_settling_pass(ImplicitStepContext& ctx, const Eigen::VectorXd& d, const std::vector<char>& moves);
+
 }  // namespace ddafit

@@ -6,8 +6,6 @@
 
 #include "forward/common/displace_block.hpp"
 #include "forward/contact/contact_law.hpp"
-#include "forward/kinematics.hpp"
-#include "forward/step/point_springs.hpp"
 #include "forward/step/settle_contacts.hpp"
 
 namespace ddafit {
@@ -274,32 +272,16 @@ int settle_sliding_groups(ImplicitStepContext& ctx, const StepParameters& relaxe
       return 0;
     }
     // Only the settled blocks move (a block in flight is left as given, as in settle_contacts).
-    Eigen::VectorXd moved = eq.d;
     double largest = 0.0;
-    for (int b = 0; b < static_cast<int>(s.blocks.size()); ++b) {
-      if (s.blocks[b].unknown < 0) continue;
-      auto db = moved.segment<6>(6 * s.blocks[b].unknown);
-      if (!settled[b]) db.setZero();
-      largest = std::max(largest, block_displacement(s, b, db));
-    }
+    for (int b = 0; b < static_cast<int>(s.blocks.size()); ++b)
+      if (s.blocks[b].unknown >= 0 && settled[b])
+        largest = std::max(largest, block_displacement(s, b, eq.d.segment<6>(6 * s.blocks[b].unknown)));
     if (largest > max_shift) {
       restore();
       return 0;
     }
-    for (ContactManifold& m : ctx.contacts.manifolds)
-      for (int q = 0; q < m.point_count; ++q) {
-        ContactPoint& p = m.points[q];
-        if (p.spring.state != ContactState::Locked) continue;
-        const PointSprings lin = point_springs(s, m, p);
-        p.spring.shear_offset +=
-            lin.shear_move(block_step(s.blocks[m.block_a], moved), block_step(s.blocks[m.block_b], moved));
-      }
-    for (int b = 0; b < static_cast<int>(s.blocks.size()); ++b)
-      if (s.blocks[b].unknown >= 0 && settled[b])
-        displace_block(s, b, moved.segment<6>(6 * s.blocks[b].unknown), false);
     // New and closing points lock where they are, as in settle_contacts' passes.
-    ctx.detection.settings.first_step = true;
-    const std::string problem = detect_contacts(s, ctx.detection, ctx.contacts);
+    const std::string problem = apply_settling_pass(ctx, eq.d, settled);
     if (!problem.empty()) {
       restore();
       return 0;
