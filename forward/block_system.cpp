@@ -20,6 +20,22 @@ void refresh_block_geometry(BlockSystem& system, int b) {
   block.s_xy = m.s_xy;
 }
 
+double longest_elastic_period(const Scene& scene, const BlockSystem& system, int* which) {
+  double longest = 0.0;
+  if (which) *which = -1;
+  for (int b = 0; b < static_cast<int>(system.blocks.size()); ++b) {
+    const Block& block = system.blocks[b];
+    if (block.fixed) continue;
+    const Material& m = scene.materials[block.material];
+    const double period = std::sqrt(block.area) / std::sqrt(m.young_modulus / m.density);
+    if (period > longest) {
+      longest = period;
+      if (which) *which = b;
+    }
+  }
+  return longest;
+}
+
 double block_length_along(const BlockSystem& system, int b, const Vec2& t) {
   const Block& block = system.blocks[b];
   double lo = std::numeric_limits<double>::infinity();

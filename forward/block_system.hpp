@@ -76,4 +76,9 @@ void refresh_block_geometry(BlockSystem& system, int b);
 // block" that sets the critical distance of seed Eq. 2).
 double block_length_along(const BlockSystem& system, int b, const Vec2& t);
 
+// The longest elastic period L / c of the free blocks (L = sqrt(area), c = sqrt(E / rho)): the
+// slowest elastic mode of the scene, which a time step resolves first. `which` (if given) is set
+// to that block, or -1 when no block is free (the period is then 0).
+double longest_elastic_period(const Scene& scene, const BlockSystem& system, int* which = nullptr);
+
 }  // namespace ddafit

@@ -77,7 +77,8 @@ struct SimulationOptions {
 
   // Speed, m/s, at which a contact found already deeper than the step can mend (a
   // corner that came round a corner) is pushed back out: its spring is unloaded at
-  // its start-of-step gap plus max_pushout_speed x dt (forward/step/assemble.hpp).
+  // its start-of-step gap plus max_pushout_speed x dt, plus the overlap its load held
+  // (forward/step/assemble.hpp).
   double max_pushout_speed = 1.0;
 
   // Contact search distance as a multiple of the largest displacement allowed per step.

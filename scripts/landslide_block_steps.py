@@ -23,7 +23,7 @@ FACES = [(40.0, 25.0), (35.0, 33.0), (28.0, 18.0)]
 E, RHO, G = 5e9, 2700.0, 9.81
 
 
-def scene(length, height, slope, friction, joint, integrator, step):
+def scene(length, height, slope, friction, joint, integrator, step, penalty_factor=None):
     a = math.radians(slope)
     along, up = (math.cos(a), -math.sin(a)), (math.sin(a), math.cos(a))
     at = lambda s, h: (s * along[0] + h * up[0], s * along[1] + h * up[1])
@@ -48,6 +48,8 @@ def scene(length, height, slope, friction, joint, integrator, step):
     lines += ["default_interface: face", "measure:",
               "  - {name: centre, at: %s}" % pt(at(rear + 0.5 * length, 0.5 * height)),
               "output: {interval: %r}" % step]
+    if penalty_factor is not None:
+        lines.append("control: {penalty_factor: %r}" % penalty_factor)
     return "\n".join(lines) + "\n", accel, along
 
 
@@ -68,6 +70,8 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--ddafit", default="build/apps/ddafit/ddafit")
     parser.add_argument("--integrator", default="implicit", choices=["implicit", "substep"])
+    parser.add_argument("--penalty-factor", type=float, default=None,
+                        help="control.penalty_factor (p / E); the default penalty if not given")
     parser.add_argument("--shares", type=float, nargs="+", default=[0.005, 0.007, 0.01, 0.05, 0.2, 0.7])
     args = parser.parse_args()
     c = math.sqrt(E / RHO)
@@ -78,7 +82,8 @@ def main():
                 step = share * math.sqrt(length * height) / c
                 for slope, friction in FACES:
                     for joint in (None, length / 3.0):
-                        text, accel, along = scene(length, height, slope, friction, joint, args.integrator, step)
+                        text, accel, along = scene(length, height, slope, friction, joint, args.integrator, step,
+                                                   args.penalty_factor)
                         path, out = os.path.join(tmp, "scene.yaml"), os.path.join(tmp, "out")
                         with open(path, "w") as f:
                             f.write(text)

@@ -13,6 +13,7 @@
 // 40 %, 10 m: 12 % at 0.1 L/c). Its settling before t = 0 held every point locked, and a block
 // that then slid started with the normal forces and strain of one held by its shear springs
 // (forward/step/settle_sliding.hpp). Measured after it (2026-12-06): worst 3.7e-3, at 0.05 L/c.
+#include <algorithm>
 #include <cmath>
 #include <iostream>
 #include <string>
@@ -129,35 +130,93 @@ TEST(LandslideBlocks, AStackOfTwoSlidesAsOneAsSeedEq4SaysImplicit) {
       }
 }
 
-// The short-step warning (forward/simulation.cpp, below 0.01 L/c of the largest free block) marks
-// where these sliders go wrong. Measured 2026-12-06 through `ddafit simulate` with an output at
-// every step (/tmp probes, not kept): the class of the test above at 0.005 L/c ran up to 78 % off
-// seed Eq. 4 (a 200 x 50 m slider on 35 deg at 33 deg, on one fixed block), at 0.003 L/c a 90 x 24 m
-// one 53 %; at 0.007 L/c all within 2.2e-4, at 0.01 L/c 1.4e-6. Here, on the 90 m slider of that
-// face: at 0.02 L/c the run is within 1 % and carries no warning; at 0.005 L/c it carries it.
-TEST(LandslideBlocks, TheTimeStepWarningMarksWhereLandslideBlocksGoWrong) {
+// Short steps: the class of the first test (sizes, faces, one base block or joints) at 0.001 and
+// 0.005 of each slider's elastic period L/c, implicit solver, 0.6 s (every slider has moved 1 cm by
+// then; an output every 0.01 s, a whole number of steps apart). Until model revision 2026-12-06.6
+// these ran up to 78 % off seed Eq. 4 (a 200 x 50 m slider on 35 deg at 33 deg at 0.005 L/c; a
+// 90 x 24 m one 53 % at 0.003 L/c), and `ddafit simulate` warned below 0.01 L/c. Two causes:
+//   - a point's spring was unloaded at its start-of-step gap plus max_pushout_speed x dt, so a
+//     resting point could hold no more than the penalty times 1 m/s x dt: the 200 m slider's
+//     resting overlap, 0.5 mm, exceeds 0.37 mm at 0.005 L/c, and the block sank and rocked
+//     (forward/step/assemble.hpp, spring_reference, now holds the overlap its load held);
+//   - the settling passes took 30 run steps, 0.15 L/c, where inertia outweighs the springs: a pass
+//     closed 3.5 % of the way to rest, which read as a block falling, and the slider started
+//     unloaded (forward/step/settle_contacts.hpp, kSettlePeriods: now at least one L/c).
+// Measured after it with scripts/landslide_block_steps.py (the same class, 1.5 s, an output every
+// step): worst 4.7e-6 at 0.005 L/c, 8.7e-4 at 0.001, 1.1e-3 at 0.0003. Tolerance: 1 % (the class's).
+TEST(LandslideBlocks, SlideFromRestAsSeedEq4SaysAtShortStepsImplicit) {
+  const double slopes[][2] = {{40, 25}, {35, 33}, {28, 18}};
+  const double wave_speed = std::sqrt(5.0e9 / kRockDensity);
+  for (const SliderSize& size : kSizes)
+    for (const double share : {0.001, 0.005}) {
+      double worst = 0.0;
+      for (const auto& slope : slopes)
+        for (const bool jointed : {false, true}) {
+          Crossing c;
+          c.slope = slope[0], c.friction = slope[1];
+          c.length = size.length, c.height = size.height;
+          // Unjointed: one base block 4 L + 10 m long, the slider at its middle (a plane 10 km long
+          // is a known limit at these steps: the last test below).
+          c.spacing = jointed ? size.length / 3.0 : 4.0 * size.length + 10.0;
+          c.front_gap = jointed ? 0.37 * c.spacing : 0.5 * c.spacing;
+          Scene scene = crossing_scene(c, Integrator::Implicit);
+          scene.duration = 0.6;
+          scene.max_step = share * std::sqrt(size.length * size.height) / wave_speed;
+          scene.output_interval = scene.max_step * std::max(1.0, std::round(0.01 / scene.max_step));
+          const SimulationResult r = simulate(scene);
+          const std::string label = describe(c, Integrator::Implicit) + ", step " + std::to_string(share) + " L/c";
+          ASSERT_EQ(r.summary.status, RunStatus::Completed) << label << ": " << r.summary.message;
+          double when = 0.0;
+          const double error = displacement_error(r, c, &when);
+          EXPECT_LT(error, kDisplacementTolerance) << label << ": worst at t = " << when << " s";
+          worst = std::max(worst, error);
+        }
+      std::cout << "[measured] sliders " << size.length << " x " << size.height << " m at " << share
+                << " L/c: worst " << worst << " of seed Eq. 4\n";
+    }
+}
+
+// The short-step warning (forward/simulation.cpp) comes below 3e-4 L/c of the largest free block,
+// the shortest step checked above: a 200 x 50 m slider (L/c = 73 ms) is warned at 2e-4 L/c and not
+// at 4e-4 L/c. (A contract of the warning's place; 5 ms of run is enough to read it.)
+TEST(LandslideBlocks, StepsShorterThanTheCheckedOnesAreWarnedAbout) {
   Crossing c;
-  c.slope = 35.0, c.friction = 33.0, c.length = 90.0, c.height = 24.0, c.spacing = 1e4, c.front_gap = 5e3;
+  c.slope = 35.0, c.friction = 33.0, c.length = 200.0, c.height = 50.0, c.spacing = 1e4, c.front_gap = 5e3;
   const double elastic_period = std::sqrt(c.length * c.height) / std::sqrt(5.0e9 / kRockDensity);
-  for (const double share : {0.005, 0.02}) {
+  for (const double share : {2e-4, 4e-4}) {
     Scene scene = crossing_scene(c, Integrator::Implicit);
+    scene.duration = 0.005;
     scene.max_step = share * elastic_period;
-    scene.output_interval = 0.01;
+    scene.output_interval = 0.0;
     const SimulationResult r = simulate(scene);
     ASSERT_EQ(r.summary.status, RunStatus::Completed) << r.summary.message;
-    double when = 0.0;
-    const double error = displacement_error(r, c, &when);
     bool warned = false;
     for (const std::string& w : r.summary.warnings) warned = warned || w.find("time.step") != std::string::npos;
-    std::cout << "[measured] 90 x 24 m slider at " << share << " L/c: " << error << " off seed Eq. 4, "
-              << (warned ? "warned" : "not warned") << "\n";
-    if (share < 0.01) {
-      EXPECT_TRUE(warned) << share << " L/c";
-    } else {
-      EXPECT_FALSE(warned) << share << " L/c";
-      EXPECT_LT(error, kDisplacementTolerance) << share << " L/c";
-    }
+    EXPECT_EQ(warned, share < 3e-4) << share << " L/c";
   }
+}
+
+// Known defect (2026-12-06): a slider on a plane a thousand times its size, at steps far shorter
+// than its elastic period. The 10 x 2.5 m slider of the short-step test on the first test's 10 km
+// base block, 35 deg at 33 deg, at 0.001 L/c (3.7 us), runs 16 % off seed Eq. 4 from t = 0.1 s (it
+// starts exact): the contact tolerance (forward/options.hpp, contact_tolerance_ratio) is 1e-7 of the
+// largest move allowed per step, 0.005 of the half model, so 2.5 um here, as deep as the slider's
+// whole resting overlap (2.6 um); a point that opens while the block rocks closes only that deep,
+// and the block chatters. At 0.005 L/c, or with control.contact_tolerance_ratio 1e-8, or with
+// control.max_displacement_ratio 5e-4, it is within 3e-4. Not mended: a tolerance from the blocks'
+// resting overlaps would cut it a hundredfold in brick walls, where it stops state flips
+// (docs/theory.md, Known limits (a)).
+TEST(LandslideBlocks, DISABLED_ASliderOnAPlaneAThousandTimesItsLengthAtAThousandthOfItsPeriodImplicit) {
+  Crossing c;
+  c.slope = 35.0, c.friction = 33.0, c.length = 10.0, c.height = 2.5, c.spacing = 1e4, c.front_gap = 5e3;
+  Scene scene = crossing_scene(c, Integrator::Implicit);
+  scene.duration = 0.6;
+  scene.max_step = 0.001 * std::sqrt(c.length * c.height) / std::sqrt(5.0e9 / kRockDensity);
+  scene.output_interval = scene.max_step * std::round(0.01 / scene.max_step);
+  const SimulationResult r = simulate(scene);
+  ASSERT_EQ(r.summary.status, RunStatus::Completed) << r.summary.message;
+  double when = 0.0;
+  EXPECT_LT(displacement_error(r, c, &when), kDisplacementTolerance) << "worst at t = " << when << " s";
 }
 
 }  // namespace

@@ -38,6 +38,7 @@ const ContactManifold* previous_of(const std::vector<ContactManifold>& previous,
 
 void start_step(SpringState& c) {
   c.step_state = c.state;
+  c.start_force = c.state == ContactState::Open ? 0.0f : static_cast<float>(std::max(c.normal_force, 0.0));
   c.state_changes = 0;
   c.shear_scale = 1.0f;
 }

@@ -44,6 +44,11 @@ const char* to_string(ContactState state);
 struct SpringState {
   ContactState state = ContactState::Open;       // current open-close iterate
   ContactState step_state = ContactState::Open;  // state at the start of the step
+  // N/m: the compression the point carried into the step (its normal force at the end of the
+  // last one; 0 if it started open or is new). Its overlap at that load, start_force / penalty,
+  // is held, not pushed out (spring_reference, forward/step/assemble.hpp). A float in the
+  // padding after the two states, so that ContactPoint does not grow.
+  float start_force = 0.0f;
   // d_s0: elastic offset of the shear spring at the start of the step, m. A locked contact
   // carries it from step to step; a sliding one sets it to the friction force over the
   // shear stiffness, so that should it lock, its spring takes over at that force.

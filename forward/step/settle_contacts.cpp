@@ -184,7 +184,10 @@ Settled run_passes(ImplicitStepContext& ctx, const StepParameters& relaxed, doub
 bool settle_contacts(ImplicitStepContext& ctx, const StepParameters& step, double max_shift, std::string& problem) {
   BlockSystem& s = ctx.system;
   StepParameters relaxed = step;
-  relaxed.time_step *= kSettleStepScale;
+  relaxed.time_step = std::max(step.time_step * kSettleStepScale,
+                               kSettlePeriods * longest_elastic_period(ctx.scene, s));
+  // The push-out cap is a speed (assemble.hpp, spring_reference): over the passes' longer step.
+  relaxed.pushout = step.pushout * (relaxed.time_step / step.time_step);
   // The blocks that settle: those resting on the ground (a cluster touching only itself is in
   // flight), and those a pass brings into contact with them.
   const std::vector<char> supported = supported_blocks(s, ctx.contacts.manifolds, ctx.detection.settings.linear_slop);

@@ -28,6 +28,12 @@
 namespace ddafit {
 
 constexpr double kSettleStepScale = 30.0;
+// ... and at least this many elastic periods L / c of the largest free block. At short steps
+// thirty of them leave the inertia larger than the springs: a 200 x 50 m slider at 0.005 L/c
+// (passes of 0.15 L/c) closed only 3.5 % of its distance to equilibrium per pass, which read as a block
+// falling (kFallingRatio), and it started as given, unloaded, 73 % off seed Eq. 4 (model
+// revision 2026-12-06.6). At one period the factor is about 0.1 for such a slider.
+constexpr double kSettlePeriods = 1.0;
 
 // Passes stop once no block moves by more than this fraction of max_shift. A tall
 // elastic column converges slowly (factor 0.5 per pass for the 225 m Vajont mass): three
