@@ -51,7 +51,11 @@ void run_implicit(const Scene& scene, BlockSystem& system, RunRecorder& recorder
   solver_options.update_factorization = options.update_factorization;
   ImplicitStepContext ctx(scene, system, summary, solver_options);
   TimeStepControl& control = ctx.control;
-  control = make_time_step_control(options, scene.max_step, system.half_model_size, automatic_penalty(scene));
+  double heaviest_weight = 0.0;  // m |g| of the heaviest free block (control_time_step.hpp)
+  for (int b = 0; b < static_cast<int>(system.blocks.size()); ++b)
+    if (!system.blocks[b].fixed) heaviest_weight = std::max(heaviest_weight, system.mass(b) * scene.gravity.norm());
+  control = make_time_step_control(options, scene.max_step, system.half_model_size, automatic_penalty(scene),
+                                   heaviest_weight);
   CollideSettings& settings = ctx.detection.settings;
   set_run_tolerances(settings, options.search_distance_factor, control.max_displacement);
   settings.first_step = true;
@@ -68,7 +72,7 @@ void run_implicit(const Scene& scene, BlockSystem& system, RunRecorder& recorder
   // The springs and loads of one attempt at a step of length dt from `time`.
   const auto step_parameters = [&](double dt) {
     StepParameters p{dt, control.penalty, options.shear_penalty_ratio * control.penalty, scene.gravity,
-                     options.contact_tolerance_ratio * control.max_displacement, options.max_pushout_speed * dt};
+                     control.contact_tolerance, options.max_pushout_speed * dt};
     p.ground_acceleration = ground.mean_acceleration(time, time + dt);
     return p;
   };
@@ -124,13 +128,13 @@ void run_implicit(const Scene& scene, BlockSystem& system, RunRecorder& recorder
         fail(RunStatus::InvalidScene, problem);
         break;
       }
-      start_new_points(system, ctx.contacts, control.step, options.contact_tolerance_ratio * control.max_displacement);
+      start_new_points(system, ctx.contacts, control.step, control.contact_tolerance);
     }
     {
       ScopedTimer timer(profile.update);
       if (resolve_impacts(ctx, control.step, struck) > 0)
         start_impact_slides(system, ctx.contacts, struck, control.step,
-                            options.contact_tolerance_ratio * control.max_displacement,
+                            control.contact_tolerance,
                             options.shear_penalty_ratio * control.penalty);
     }
     ctx.saved = ctx.contacts;
