@@ -17,6 +17,7 @@
 #include <cmath>
 #include <iostream>
 #include <string>
+#include <tuple>
 
 #include "tests/contact_scene_audit.hpp"
 #include "tests/slope_scene.hpp"
@@ -227,6 +228,83 @@ TEST(LandslideBlocks, SlidersOnAPlaneAThousandTimesTheirLengthAtAThousandthOfThe
       worst = std::max(worst, error);
     }
   std::cout << "[measured] sliders on a 10 km plane at 0.001 L/c: worst " << worst << " of seed Eq. 4\n";
+}
+
+// Two blocks stacked on a face, the joint between them weaker than the face (bedding weaker than
+// the slide's base): the upper block slides off the lower one at g (sin a - cos a tan phi_j),
+// and the lower one, dragged by it at tan phi_j of its weight, slides at
+// g sin a - g cos a (2 tan phi_b - tan phi_j) if that is positive (equal masses), else stays.
+// Blocks 20 x 5 and 100 x 25 m each; 35 deg with phi_b 30, phi_j 20 (the lower one stays); 40/30/25
+// (both slide); 35/33/28 (the lower one stays); steps of 0.05 and 0.3 L/c; 1.5 s.
+void expect_weak_joint_stack(Integrator integrator) {
+  double worst = 0.0;
+  int failed = 0;
+  for (const double length : {20.0, 100.0})
+    for (const auto& [slope, basal, joint] : {std::tuple{35.0, 30.0, 20.0}, std::tuple{40.0, 30.0, 25.0},
+                                              std::tuple{35.0, 33.0, 28.0}})
+      for (const double share : {0.05, 0.3}) {
+        Crossing c;
+        c.slope = slope, c.friction = basal, c.length = length, c.height = 0.25 * length;
+        c.spacing = 4.0 * length, c.front_gap = 2.0 * length;  // one base block, no joint on the way
+        Scene scene = crossing_scene(c, integrator);
+        scene.max_step = share * std::sqrt(c.length * c.height) / std::sqrt(5.0e9 / kRockDensity);
+        scene.output_interval = scene.max_step * std::max(1.0, std::round(0.01 / scene.max_step));
+        Interface weak = scene.interfaces[0];
+        weak.name = "joint";
+        weak.friction_angle = joint;
+        scene.interfaces.push_back(weak);
+        scene.contact_rules.push_back({"slider", "upper", 1});
+        const Slope face(slope);
+        const Vec2 rear = scene.blocks.back().polygon[0];  // the lower block's rear corner on the face
+        scene.blocks.push_back(
+            block("upper", box(rear + c.height * face.up, face.along, face.up, c.length, c.height), false));
+        scene.measure.push_back({"upper", rear + 0.5 * length * face.along + 1.5 * c.height * face.up});
+        const SimulationResult r = simulate(scene);
+        const std::string label = describe(c, integrator) + ", joint " + std::to_string(joint) + " deg, step " +
+                                  std::to_string(share) + " L/c";
+        if (r.summary.status != RunStatus::Completed) {
+          ADD_FAILURE() << label << ": " << r.summary.message;
+          ++failed;
+          continue;
+        }
+        const double g = 9.81, sine = std::sin(slope * kDegree), cosine = std::cos(slope * kDegree);
+        const double mu_b = std::tan(basal * kDegree), mu_j = std::tan(joint * kDegree);
+        const double upper_a = g * (sine - cosine * mu_j);
+        const double lower_a = std::max(0.0, g * sine - g * cosine * (2.0 * mu_b - mu_j));
+        double error = 0.0;
+        for (const HistoryRow& row : r.history) {
+          const double a = row.point == 0 ? lower_a : upper_a;
+          const double exact = 0.5 * a * row.time * row.time, moved = row.displacement.dot(face.along);
+          // The lower block held: within 1 mm; sliding, within 1 % where it has moved 1 cm.
+          if (a == 0.0) {
+            if (std::abs(moved) > 1e-3) error = std::max(error, 1.0);
+          } else if (exact >= 0.01) {
+            error = std::max(error, std::abs(moved - exact) / exact);
+          }
+        }
+        EXPECT_LT(error, kDisplacementTolerance) << label;
+        worst = std::max(worst, error);
+      }
+  std::cout << "[measured] " << name_of(integrator) << ", stacks with a weaker joint: worst " << worst
+            << " of the closed form, " << failed << " of 12 stopped\n";
+}
+
+// The substep solver: worst 7.6e-6 (measured 2026-12-06 through `ddafit simulate`).
+TEST(LandslideBlocks, AStackWithAWeakerJointSlidesApartAsTheClosedFormSaysSubstep) {
+  expect_weak_joint_stack(Integrator::Substep);
+}
+
+// Known defect (found 2026-12-06; the same with the build before revision 2026-12-06.6): the
+// implicit solver runs 8 of these 12 over their bound and stops a ninth. The lower block, which
+// should stay, moves more than 1 mm in five (20 m at 35/30/20 deg, 0.3 L/c; 35/33/28 at 0.05 L/c;
+// 100 m at 35/30/20 at both steps and at 35/33/28, 0.3 L/c); the upper block runs 19-77 % off
+// (77 %: 20 m at 35/33/28, 0.3 L/c); 100 m at 35/33/28, 0.05 L/c stops at t = 0.04 s on "contacts
+// are creating energy". Its settling before t = 0 joins blocks that start sliding into one group
+// through their loaded joint (forward/step/settle_sliding.hpp) and has no rule for a joint that
+// slips faster than its group; not traced further (docs/theory.md, Known limits (l)).
+// `time.integrator: auto` picks the implicit solver for such a small scene.
+TEST(LandslideBlocks, DISABLED_AStackWithAWeakerJointSlidesApartAsTheClosedFormSaysImplicit) {
+  expect_weak_joint_stack(Integrator::Implicit);
 }
 
 }  // namespace
