@@ -70,6 +70,18 @@ std::string heavy_on_light_warning(const BlockSystem& s, const HeavyOnLight& hea
   return out.str();
 }
 
+// Known limit (l): a block sliding off the free block it rests on, across a weaker joint.
+std::string weak_joint_warning(const BlockSystem& s, const WeakJoint& weak) {
+  std::ostringstream out;
+  out.precision(3);
+  out << "block '" << s.block_names[weak.upper] << "' rests on block '" << s.block_names[weak.lower]
+      << "' across a joint inclined " << weak.slope << " deg, steeper than its friction angle " << weak.joint
+      << " deg and weaker than the faces under that block (" << weak.support
+      << " deg): the implicit solver runs such stacks off their closed form or stops (docs/theory.md, known "
+         "limits (l)); time.integrator: substep runs them right";
+  return out.str();
+}
+
 // Integrator::Auto's rule (options.hpp, kAutoSubstepBlocks), and the reason given in
 // the summary.
 SolverReport choose_solver(const Scene& scene, const BlockSystem& s, const KnownLimits& limits) {
@@ -85,7 +97,7 @@ SolverReport choose_solver(const Scene& scene, const BlockSystem& s, const Known
   report.reason = "auto: " + std::to_string(s.free_block_count) + " free blocks, " + (many ? ">= " : "< ") +
                   std::to_string(kAutoSubstepBlocks) + " (docs/speed-accuracy.md)";
   if (many) return report;
-  // Not the implicit solver for a scene of its known limits (i) and (j) (the warnings above).
+  // Not the implicit solver for a scene of its known limits (i), (j) and (l) (the warnings above).
   std::ostringstream why;
   why.precision(3);
   if (is_tall(slider)) {
@@ -95,6 +107,10 @@ SolverReport choose_solver(const Scene& scene, const BlockSystem& s, const Known
     why << ", but block '" << s.block_names[heavy.heavy] << "' rests on block '" << s.block_names[heavy.light] << "', "
         << heavy.ratio << " times lighter, which the implicit solver runs off seed Eq. 4 more often than the substep "
            "solver (docs/theory.md, known limits (j))";
+  } else if (const WeakJoint& weak = limits.weak; is_weak_joint(weak)) {
+    why << ", but block '" << s.block_names[weak.upper] << "' rests on block '" << s.block_names[weak.lower]
+        << "' across a joint steeper than its friction angle and weaker than the faces under that block, which "
+           "the implicit solver runs off the closed form (docs/theory.md, known limits (l))";
   } else {
     return report;
   }
@@ -182,6 +198,7 @@ SimulationResult simulate(const Scene& given, const SimulationHooks& hooks) {
     if (std::string w = time_step_warning(scene, system); !w.empty()) summary.warnings.push_back(w);
     if (is_tall(limits.slider)) summary.warnings.push_back(tall_slider_warning(system, limits.slider));
     if (is_heavy_on_light(limits.heavy)) summary.warnings.push_back(heavy_on_light_warning(system, limits.heavy));
+    if (is_weak_joint(limits.weak)) summary.warnings.push_back(weak_joint_warning(system, limits.weak));
     run_implicit(scene, system, recorder, summary);
   }
   summary.profile.total = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();

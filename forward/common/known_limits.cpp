@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <vector>
 
 #include "forward/contact/detect_contacts.hpp"
 
@@ -58,11 +59,28 @@ void take_heavy(const BlockSystem& s, const ContactManifold& m, const Vec2& up, 
   if (ratio > out.ratio) out = {upper, lower, ratio};
 }
 
+// The upper block of m resting on the lower one, both free, as a weak-joint candidate: the
+// joint steeper than its friction angle and weaker than `support[lower]`.
+void take_weak_joint(const BlockSystem& s, const ContactManifold& m, const Vec2& up,
+                     const std::vector<double>& support, WeakJoint& out) {
+  if (out.upper >= 0) return;
+  const double c = m.normal.dot(up);  // > 0: b lies on a
+  if (std::abs(c) <= kRestsOn) return;
+  const Interface& joint = s.interfaces[m.interface];
+  if (joint.cohesion > 0.0 || joint.tensile_strength > 0.0) return;
+  const int upper = c > 0.0 ? m.block_b : m.block_a, lower = c > 0.0 ? m.block_a : m.block_b;
+  const double slope = std::acos(std::min(1.0, std::abs(c))) * 180.0 / M_PI;
+  if (slope > joint.friction_angle && joint.friction_angle < support[lower])
+    out = {upper, lower, slope, joint.friction_angle, support[lower]};
+}
+
 }  // namespace
 
 bool is_tall(const TallSlider& slider) { return slider.block >= 0 && slider.reach > kTallSliderReach * (1.0 + 1e-9); }
 
 bool is_heavy_on_light(const HeavyOnLight& heavy) { return heavy.heavy >= 0 && heavy.ratio >= kHeavyOnLightRatio; }
+
+bool is_weak_joint(const WeakJoint& weak) { return weak.upper >= 0; }
 
 KnownLimits find_known_limits(const Scene& scene, const BlockSystem& s) {
   KnownLimits out;
@@ -76,14 +94,30 @@ KnownLimits find_known_limits(const Scene& scene, const BlockSystem& s) {
   detection.settings.gravity = scene.gravity;
   ContactSet contacts;
   if (!detect_contacts(s, detection, contacts).empty()) return out;
+  const auto touches = [&](const ContactManifold& m) {
+    if (m.interface < 0) return false;
+    for (int q = 0; q < m.point_count; ++q)
+      if (m.points[q].separation <= detection.settings.linear_slop) return true;
+    return false;
+  };
+  // Per block: the smallest friction angle of the faces it rests on (weak joints).
+  std::vector<double> support(s.blocks.size(), std::numeric_limits<double>::infinity());
   for (const ContactManifold& m : contacts.manifolds) {
-    if (m.interface < 0) continue;
-    bool touches = false;
-    for (int q = 0; q < m.point_count; ++q) touches |= m.points[q].separation <= detection.settings.linear_slop;
-    if (!touches) continue;
+    if (!touches(m)) continue;
+    const double c = m.normal.dot(up);  // > 0: b lies on a
+    if (std::abs(c) <= kRestsOn) continue;
+    const int upper = c > 0.0 ? m.block_b : m.block_a;
+    support[upper] = std::min(support[upper], s.interfaces[m.interface].friction_angle);
+  }
+  for (const ContactManifold& m : contacts.manifolds) {
+    if (!touches(m)) continue;
     const bool fa = s.blocks[m.block_a].fixed, fb = s.blocks[m.block_b].fixed;
-    if (fa != fb) take_slider(s, m, up, out.slider);
-    else if (!fa) take_heavy(s, m, up, out.heavy);
+    if (fa != fb) {
+      take_slider(s, m, up, out.slider);
+    } else if (!fa) {
+      take_heavy(s, m, up, out.heavy);
+      take_weak_joint(s, m, up, support, out.weak);
+    }
   }
   return out;
 }

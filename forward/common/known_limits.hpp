@@ -21,6 +21,12 @@
 // more than 1 % off seed Eq. 4 (up to 32 %), and 20-440 s for a second of 24 row blocks; the
 // substep solver 18 of 38 (tall sliders; none at r = 0.5), in under a second. 20-30 times:
 // implicit 5 of 8, substep 4 of 8; below 20 times: implicit 3 of 26 (1.2-1.3 %), substep none.
+//
+// Stacks with a weaker joint (Known limits (l)). A free block resting on a free block across a
+// joint steeper than the joint's friction angle and weaker than every face the lower block rests
+// on: it slides off the lower block from rest. Measured on tests/test_landslide_blocks.cpp's class
+// (20 and 100 m blocks, three faces, 0.05 and 0.3 L/c): the implicit solver 8 of 12 over their
+// bound and 1 stopped; the substep solver within 7.6e-6.
 #pragma once
 
 #include "forward/block_system.hpp"
@@ -48,6 +54,13 @@ struct HeavyOnLight {
   double ratio = 0.0;          // mass of heavy / mass of light
 };
 
+struct WeakJoint {
+  int upper = -1, lower = -1;  // the first such pair found, or -1 if none
+  double slope = 0.0;          // the joint's inclination, degrees
+  double joint = 0.0;          // its friction angle, degrees
+  double support = 0.0;        // the smallest friction angle of the faces the lower block rests on
+};
+
 struct KnownLimits {
   // The free block with the largest r among those resting at t = 0 (a contact point within the
   // slop) on a fixed block's face, without cohesion or tensile strength, that is steeper than
@@ -56,6 +69,10 @@ struct KnownLimits {
   // Of the free blocks resting at t = 0 on a free block (a contact point within the slop, its
   // normal more than a tenth against gravity), the pair with the largest mass ratio.
   HeavyOnLight heavy;
+  // A free block resting at t = 0 on a free block across a joint without cohesion or tensile
+  // strength, steeper than the joint's friction angle, which is below that of every face the
+  // lower block rests on.
+  WeakJoint weak;
 };
 
 // Whether the scene holds a known limit's class: a tall slider (r above kTallSliderReach, a
@@ -63,8 +80,9 @@ struct KnownLimits {
 // block heavy on a light one (kHeavyOnLightRatio).
 bool is_tall(const TallSlider& slider);
 bool is_heavy_on_light(const HeavyOnLight& heavy);
+bool is_weak_joint(const WeakJoint& weak);
 
-// Both classes from one contact detection, as a run's first step would do it.
+// The classes from one contact detection, as a run's first step would do it.
 KnownLimits find_known_limits(const Scene& scene, const BlockSystem& s);
 
 }  // namespace ddafit
