@@ -26,6 +26,15 @@ void extents(const BlockSystem& s, int b, const Vec2& t, const Vec2& n, double& 
 // on the other (collide.cpp's supports take a tenth too).
 constexpr double kRestsOn = 0.1;
 
+// Whether one block of m rests on the other (its normal more than kRestsOn against gravity), and
+// which: m.normal runs from a to b, so n . up > 0 means b lies on a.
+bool resting_pair(const ContactManifold& m, const Vec2& up, int& upper, int& lower) {
+  const double c = m.normal.dot(up);
+  if (std::abs(c) <= kRestsOn) return false;
+  upper = c > 0.0 ? m.block_b : m.block_a, lower = c > 0.0 ? m.block_a : m.block_b;
+  return true;
+}
+
 // The free block of m resting on the fixed one as a tall-slider candidate, into `out`.
 void take_slider(const BlockSystem& s, const ContactManifold& m, const Vec2& up, TallSlider& out) {
   const bool fa = s.blocks[m.block_a].fixed;
@@ -50,9 +59,8 @@ void take_slider(const BlockSystem& s, const ContactManifold& m, const Vec2& up,
 
 // The upper of two free blocks of m, if one rests on the other, as a heavy-on-light candidate.
 void take_heavy(const BlockSystem& s, const ContactManifold& m, const Vec2& up, HeavyOnLight& out) {
-  const double c = m.normal.dot(up);  // > 0: b lies on a
-  if (std::abs(c) <= kRestsOn) return;
-  const int upper = c > 0.0 ? m.block_b : m.block_a, lower = c > 0.0 ? m.block_a : m.block_b;
+  int upper = -1, lower = -1;
+  if (!resting_pair(m, up, upper, lower)) return;
   const double light = s.mass(lower);
   if (!(light > 0.0)) return;
   const double ratio = s.mass(upper) / light;
@@ -63,13 +71,11 @@ void take_heavy(const BlockSystem& s, const ContactManifold& m, const Vec2& up, 
 // joint steeper than its friction angle and weaker than `support[lower]`.
 void take_weak_joint(const BlockSystem& s, const ContactManifold& m, const Vec2& up,
                      const std::vector<double>& support, WeakJoint& out) {
-  if (out.upper >= 0) return;
-  const double c = m.normal.dot(up);  // > 0: b lies on a
-  if (std::abs(c) <= kRestsOn) return;
+  int upper = -1, lower = -1;
+  if (out.upper >= 0 || !resting_pair(m, up, upper, lower)) return;
   const Interface& joint = s.interfaces[m.interface];
   if (joint.cohesion > 0.0 || joint.tensile_strength > 0.0) return;
-  const int upper = c > 0.0 ? m.block_b : m.block_a, lower = c > 0.0 ? m.block_a : m.block_b;
-  const double slope = std::acos(std::min(1.0, std::abs(c))) * 180.0 / M_PI;
+  const double slope = std::acos(std::min(1.0, std::abs(m.normal.dot(up)))) * 180.0 / M_PI;
   if (slope > joint.friction_angle && joint.friction_angle < support[lower])
     out = {upper, lower, slope, joint.friction_angle, support[lower]};
 }
@@ -103,10 +109,8 @@ KnownLimits find_known_limits(const Scene& scene, const BlockSystem& s) {
   // Per block: the smallest friction angle of the faces it rests on (weak joints).
   std::vector<double> support(s.blocks.size(), std::numeric_limits<double>::infinity());
   for (const ContactManifold& m : contacts.manifolds) {
-    if (!touches(m)) continue;
-    const double c = m.normal.dot(up);  // > 0: b lies on a
-    if (std::abs(c) <= kRestsOn) continue;
-    const int upper = c > 0.0 ? m.block_b : m.block_a;
+    int upper = -1, lower = -1;
+    if (!touches(m) || !resting_pair(m, up, upper, lower)) continue;
     support[upper] = std::min(support[upper], s.interfaces[m.interface].friction_angle);
   }
   for (const ContactManifold& m : contacts.manifolds) {
