@@ -77,8 +77,9 @@ std::string weak_joint_warning(const BlockSystem& s, const WeakJoint& weak) {
   out << "block '" << s.block_names[weak.upper] << "' rests on block '" << s.block_names[weak.lower]
       << "' across a joint inclined " << weak.slope << " deg, steeper than its friction angle " << weak.joint
       << " deg and weaker than the faces under that block (" << weak.support
-      << " deg): the implicit solver runs such stacks off their closed form or stops (docs/theory.md, known "
-         "limits (l)); time.integrator: substep runs them right";
+      << " deg): where friction holds the lower block by a narrow margin (under 7 % of its face's capacity) the "
+         "implicit solver lets it creep (docs/theory.md, known limits (l)); time.integrator: substep runs such "
+         "stacks right";
   return out.str();
 }
 
@@ -110,7 +111,8 @@ SolverReport choose_solver(const Scene& scene, const BlockSystem& s, const Known
   } else if (const WeakJoint& weak = limits.weak; is_weak_joint(weak)) {
     why << ", but block '" << s.block_names[weak.upper] << "' rests on block '" << s.block_names[weak.lower]
         << "' across a joint steeper than its friction angle and weaker than the faces under that block, which "
-           "the implicit solver runs off the closed form (docs/theory.md, known limits (l))";
+           "the implicit solver lets creep where friction holds the lower block narrowly (docs/theory.md, known "
+           "limits (l))";
   } else {
     return report;
   }

@@ -15,6 +15,7 @@
 // (forward/step/settle_sliding.hpp). Measured after it (2026-12-06): worst 3.7e-3, at 0.05 L/c.
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <iostream>
 #include <string>
 #include <tuple>
@@ -238,32 +239,62 @@ TEST(LandslideBlocks, SlidersOnAPlaneAThousandTimesTheirLengthAtAThousandthOfThe
 // the slide's base): the upper block slides off the lower one at g (sin a - cos a tan phi_j),
 // and the lower one, dragged by it at tan phi_j of its weight, slides at
 // g sin a - g cos a (2 tan phi_b - tan phi_j) if that is positive (equal masses), else stays.
-// Blocks 20 x 5 and 100 x 25 m each; 35 deg with phi_b 30, phi_j 20 (the lower one stays); 40/30/25
-// (both slide); 35/33/28 (the lower one stays); steps of 0.05 and 0.3 L/c; 1.5 s.
-void expect_weak_joint_stack(Integrator integrator) {
+struct WeakJointFace {
+  double slope, basal, joint;  // deg: the face's dip, its friction angle, the joint's
+};
+
+// How far the lower block is from sliding: 1 - (its drive along the face) / (the face's capacity),
+// sin a + cos a tan phi_j against 2 cos a tan phi_b; negative where it slides.
+double holding_margin(const WeakJointFace& f) {
+  const double sine = std::sin(f.slope * kDegree), cosine = std::cos(f.slope * kDegree);
+  return 1.0 - (sine + cosine * std::tan(f.joint * kDegree)) / (2.0 * cosine * std::tan(f.basal * kDegree));
+}
+
+struct WeakJointClass {
+  std::vector<double> lengths;  // m, each block; height a quarter of it
+  std::vector<WeakJointFace> faces;
+  std::vector<double> shares;  // the step, as a share of the block's L/c
+};
+
+// The first class (2026-12-06): 20 and 100 m; 35/30/20 (the lower block held, margin 7.8 %),
+// 40/30/25 (both slide), 35/33/28 (held, 5.2 %); 0.05 and 0.3 L/c.
+const WeakJointClass kFirstWeakJointClass = {{20.0, 100.0}, {{35, 30, 20}, {40, 30, 25}, {35, 33, 28}}, {0.05, 0.3}};
+// A wider one (revision 2026-12-06.9): 5-200 m; 30/28/20 (held, 11.5 %), 45/40/30 (held, 6.0 %),
+// 38/30/29 (both slide), 33/31/25 (held, 7.2 %), 50/45/40 (both slide), 25/22/10 (held, 20 %);
+// 0.02, 0.1 and 0.5 L/c.
+const WeakJointClass kWideWeakJointClass = {{5.0, 20.0, 50.0, 200.0},
+                                            {{30, 28, 20}, {45, 40, 30}, {38, 30, 29}, {33, 31, 25}, {50, 45, 40},
+                                             {25, 22, 10}},
+                                            {0.02, 0.1, 0.5}};
+
+// The stacks of `cls` whose face `take` accepts, 1.5 s each, against the closed form: the lower
+// block held within 1 mm; a sliding block within 1 % once it has moved 1 cm.
+void expect_weak_joint_stack(Integrator integrator, const WeakJointClass& cls,
+                             const std::function<bool(const WeakJointFace&)>& take) {
   double worst = 0.0;
-  int failed = 0;
-  for (const double length : {20.0, 100.0})
-    for (const auto& [slope, basal, joint] : {std::tuple{35.0, 30.0, 20.0}, std::tuple{40.0, 30.0, 25.0},
-                                              std::tuple{35.0, 33.0, 28.0}})
-      for (const double share : {0.05, 0.3}) {
+  int failed = 0, runs = 0;
+  for (const double length : cls.lengths)
+    for (const WeakJointFace& f : cls.faces)
+      for (const double share : cls.shares) {
+        if (!take(f)) continue;
+        ++runs;
         Crossing c;
-        c.slope = slope, c.friction = basal, c.length = length, c.height = 0.25 * length;
+        c.slope = f.slope, c.friction = f.basal, c.length = length, c.height = 0.25 * length;
         c.spacing = 4.0 * length, c.front_gap = 2.0 * length;  // one base block, no joint on the way
         Scene scene = crossing_scene(c, integrator);
         set_step_share(scene, c, share);
         Interface weak = scene.interfaces[0];
         weak.name = "joint";
-        weak.friction_angle = joint;
+        weak.friction_angle = f.joint;
         scene.interfaces.push_back(weak);
         scene.contact_rules.push_back({"slider", "upper", 1});
-        const Slope face(slope);
+        const Slope face(f.slope);
         const Vec2 rear = scene.blocks.back().polygon[0];  // the lower block's rear corner on the face
         scene.blocks.push_back(
             block("upper", box(rear + c.height * face.up, face.along, face.up, c.length, c.height), false));
         scene.measure.push_back({"upper", rear + 0.5 * length * face.along + 1.5 * c.height * face.up});
         const SimulationResult r = simulate(scene);
-        const std::string label = describe(c, integrator) + ", joint " + std::to_string(joint) + " deg, step " +
+        const std::string label = describe(c, integrator) + ", joint " + std::to_string(f.joint) + " deg, step " +
                                   std::to_string(share) + " L/c";
         // auto: every such scene is one of Known limits (l), and runs on the substep solver.
         if (integrator == Integrator::Auto) {
@@ -274,15 +305,14 @@ void expect_weak_joint_stack(Integrator integrator) {
           ++failed;
           continue;
         }
-        const double g = 9.81, sine = std::sin(slope * kDegree), cosine = std::cos(slope * kDegree);
-        const double mu_b = std::tan(basal * kDegree), mu_j = std::tan(joint * kDegree);
+        const double g = 9.81, sine = std::sin(f.slope * kDegree), cosine = std::cos(f.slope * kDegree);
+        const double mu_b = std::tan(f.basal * kDegree), mu_j = std::tan(f.joint * kDegree);
         const double upper_a = g * (sine - cosine * mu_j);
         const double lower_a = std::max(0.0, g * sine - g * cosine * (2.0 * mu_b - mu_j));
         double error = 0.0;
         for (const HistoryRow& row : r.history) {
           const double a = row.point == 0 ? lower_a : upper_a;
           const double exact = 0.5 * a * row.time * row.time, moved = row.displacement.dot(face.along);
-          // The lower block held: within 1 mm; sliding, within 1 % where it has moved 1 cm.
           if (a == 0.0) {
             if (std::abs(moved) > 1e-3) error = std::max(error, 1.0);
           } else if (exact >= 0.01) {
@@ -292,35 +322,55 @@ void expect_weak_joint_stack(Integrator integrator) {
         EXPECT_LT(error, kDisplacementTolerance) << label;
         worst = std::max(worst, error);
       }
-  std::cout << "[measured] " << name_of(integrator) << ", stacks with a weaker joint: worst " << worst
-            << " of the closed form, " << failed << " of 12 stopped\n";
+  std::cout << "[measured] " << name_of(integrator) << ", " << runs << " stacks with a weaker joint: worst " << worst
+            << " of the closed form, " << failed << " stopped\n";
+}
+
+constexpr auto kEveryFace = [](const WeakJointFace&) { return true; };
+
+// A lower block held by less than this share of its face's capacity creeps on the implicit solver
+// (Known limits (l)).
+constexpr double kNarrowHold = 0.07;
+bool held_narrowly(const WeakJointFace& f) {
+  const double margin = holding_margin(f);
+  return margin > 0.0 && margin < kNarrowHold;
 }
 
 // time.integrator: auto sends these small scenes (two free blocks) to the substep solver since
-// model revision 2026-12-06.8 (forward/common/known_limits.hpp, WeakJoint); before, to the implicit
-// one, whose defect the disabled test below records.
+// model revision 2026-12-06.8 (forward/common/known_limits.hpp, WeakJoint).
 TEST(LandslideBlocks, AutoRunsAStackWithAWeakerJointOnTheSubstepSolver) {
-  expect_weak_joint_stack(Integrator::Auto);
+  expect_weak_joint_stack(Integrator::Auto, kFirstWeakJointClass, kEveryFace);
 }
 
-// The substep solver: worst 7.6e-6 (measured 2026-12-06 through `ddafit simulate`).
+// The substep solver: worst 7.6e-6 on the first class, 5.8e-3 on the wide one (measured
+// 2026-12-06 through `ddafit simulate` and this test).
 TEST(LandslideBlocks, AStackWithAWeakerJointSlidesApartAsTheClosedFormSaysSubstep) {
-  expect_weak_joint_stack(Integrator::Substep);
+  expect_weak_joint_stack(Integrator::Substep, kFirstWeakJointClass, kEveryFace);
+  expect_weak_joint_stack(Integrator::Substep, kWideWeakJointClass, kEveryFace);
 }
 
-// Known defect (found 2026-12-06; the same with the build before revision 2026-12-06.6): the
-// implicit solver runs 8 of these 12 over their bound and stops a ninth. The lower block, which
-// should stay, moves more than 1 mm in five (20 m at 35/30/20 deg, 0.3 L/c; 35/33/28 at 0.05 L/c;
-// 100 m at 35/30/20 at both steps and at 35/33/28, 0.3 L/c); the upper block runs 19-77 % off
-// (77 %: 20 m at 35/33/28, 0.3 L/c); 100 m at 35/33/28, 0.05 L/c stops at t = 0.04 s on "contacts
-// are creating energy". Its settling before t = 0 (forward/step/settle_sliding.hpp) runs the two
-// blocks as one sliding group with one acceleration (d'Alembert's -m a, a = sum F / sum m); where the
-// joint slips they accelerate differently and the passes do not converge: 9 of the 12 ran all 40
-// (control.settle_passes), 3 gave up on a pass moving more than the allowed shift (a probe build's
-// prints, 2026-12-06). Not mended (docs/theory.md, Known limits (l)).
-// `time.integrator: auto` picks the substep solver for such a scene since revision 2026-12-06.8.
-TEST(LandslideBlocks, DISABLED_AStackWithAWeakerJointSlidesApartAsTheClosedFormSaysImplicit) {
-  expect_weak_joint_stack(Integrator::Implicit);
+// The implicit solver. Until model revision 2026-12-06.9 it ran 8 of the first class's 12 over
+// their bound and stopped a ninth: its settling before t = 0 (forward/step/settle_sliding.cpp)
+// ran the two blocks as one sliding group with one acceleration, where the joint slips and they
+// accelerate apart. Each block now takes its own, and a lower block whose net force points
+// against its slip is held. Every stack but those held narrowly (below) is within its bound
+// (worst measured 7.8e-3, 200 m at 50/45/40 deg, 0.02 L/c, where the lower block's acceleration is
+// 0.02 g; 2026-12-06).
+TEST(LandslideBlocks, AStackWithAWeakerJointSlidesApartAsTheClosedFormSaysImplicit) {
+  const auto broad = [](const WeakJointFace& f) { return !held_narrowly(f); };
+  expect_weak_joint_stack(Integrator::Implicit, kFirstWeakJointClass, broad);
+  expect_weak_joint_stack(Integrator::Implicit, kWideWeakJointClass, broad);
+}
+
+// Known defect (Known limits (l)): a lower block held by under 7 % of its face's capacity
+// (35/33/28 deg: 5.2 %; 45/40/30: 6.0 %) starts still but creeps on the implicit solver, more
+// than 1 mm within 1.5 s in 7 of 16 runs (5-200 m, steps of 0.02-0.1 L/c; 20 m at 35/33/28 from
+// t = 1.05 s),
+// its rear corner opening and closing as the upper block slides off (a probe build's state
+// changes). `time.integrator: auto` runs such scenes on the substep solver.
+TEST(LandslideBlocks, DISABLED_ALowerBlockHeldNarrowlyStaysUnderAWeakerJointImplicit) {
+  expect_weak_joint_stack(Integrator::Implicit, kFirstWeakJointClass, held_narrowly);
+  expect_weak_joint_stack(Integrator::Implicit, kWideWeakJointClass, held_narrowly);
 }
 
 }  // namespace

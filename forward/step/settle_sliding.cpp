@@ -33,6 +33,7 @@ constexpr double kParallelSine = 1e-3;
 struct SlidingGroups {
   std::vector<int> group;       // per block: its group, -1 if not settled or fixed
   std::vector<Vec2> tangent;    // per group: the direction it slides in along its face, zero if none
+  std::vector<char> on_ground;  // per group: its tangent is its slip against blocks outside the settled ones
   bool resolved = true;         // false: a group slides on faces that are not parallel
   bool any = false;             // a group slides
 };
@@ -62,9 +63,13 @@ int find(std::vector<int>& parent, int i) {
   return i;
 }
 
-// The settled free blocks joined by loaded points, and the direction each group slides in (its
-// loaded sliding points against blocks outside it).
-SlidingGroups sliding_groups(const BlockSystem& s, const ContactSet& contacts, const std::vector<char>& settled) {
+// The settled free blocks joined by loaded points that do not slide, and the direction each group
+// slides in. Blocks joined by a sliding point slip against each other (a block on a weaker joint of
+// the block beneath it), each group at its own acceleration; where the joint is as strong as the
+// face below, both accelerations come out equal (add_inertial_loads), as one group's would. A group
+// with a block in `held` does not slide.
+SlidingGroups sliding_groups(const BlockSystem& s, const ContactSet& contacts, const std::vector<char>& settled,
+                             const std::vector<char>& held) {
   const int n = static_cast<int>(s.blocks.size());
   const auto member = [&](int b) { return s.blocks[b].unknown >= 0 && settled[b]; };
   const double largest = largest_normal_force(contacts);
@@ -73,12 +78,10 @@ SlidingGroups sliding_groups(const BlockSystem& s, const ContactSet& contacts, c
   };
   std::vector<int> parent(n);
   std::iota(parent.begin(), parent.end(), 0);
-  // Joined through sliding points too: blocks stacked on a sliding block slide with it (with
-  // the same friction at their joint they do not slip on it; a weaker joint's block, which
-  // would, is left unbalanced and the passes give up, settle_sliding_groups).
   for (const ContactManifold& m : contacts.manifolds)
     for (int q = 0; q < m.point_count; ++q)
-      if (loaded(m.points[q]) && member(m.block_a) && member(m.block_b))
+      if (loaded(m.points[q]) && m.points[q].spring.state != ContactState::Sliding && member(m.block_a) &&
+          member(m.block_b))
         parent[find(parent, m.block_a)] = find(parent, m.block_b);
   SlidingGroups g;
   g.group.assign(n, -1);
@@ -89,11 +92,16 @@ SlidingGroups sliding_groups(const BlockSystem& s, const ContactSet& contacts, c
     if (id[root] < 0) id[root] = static_cast<int>(g.tangent.size()), g.tangent.emplace_back(Vec2::Zero());
     g.group[b] = id[root];
   }
-  // Each sliding point tells the direction its group slips in: s along the tangent for block b
-  // against a (SpringState::slip_direction). A group whose points slip both ways along one face
-  // (a block at rest whose base corners spread apart under its own weight, Poisson's ratio)
-  // is not sliding.
-  std::vector<char> both_ways(g.tangent.size(), 0);
+  const size_t groups = g.tangent.size();
+  // Each sliding point tells the direction its group slips in against the block across it: s along
+  // the tangent for block b against a (SpringState::slip_direction). Slips against the ground (a
+  // block that is not a settled free one) are what the group does; slips against another group
+  // only say how the two part (the lower block of a weaker joint slips down its face and up
+  // against the block above), and are taken where the group slips against no ground. A group
+  // whose points slip both ways along one face (a block at rest whose base corners spread apart
+  // under its own weight, Poisson's ratio) is not sliding.
+  std::vector<Vec2> against[2] = {std::vector<Vec2>(groups, Vec2::Zero()), std::vector<Vec2>(groups, Vec2::Zero())};
+  std::vector<char> both_ways[2] = {std::vector<char>(groups, 0), std::vector<char>(groups, 0)};
   for (const ContactManifold& m : contacts.manifolds)
     for (int q = 0; q < m.point_count; ++q) {
       const SpringState& c = m.points[q].spring;
@@ -102,21 +110,28 @@ SlidingGroups sliding_groups(const BlockSystem& s, const ContactSet& contacts, c
         const int k = g.group[b];
         const int other = b == m.block_a ? m.block_b : m.block_a;
         if (k < 0 || g.group[other] == k) continue;
+        const int ground = g.group[other] < 0 ? 1 : 0;
         const Vec2 slips = side(m, b) * c.slip_direction * m.tangent;
-        Vec2& t = g.tangent[k];
+        Vec2& t = against[ground][k];
         if (t.isZero()) {
           t = slips;
         } else if (std::abs(t.x() * slips.y() - t.y() * slips.x()) > kParallelSine) {
           g.resolved = false;
         } else if (t.dot(slips) < 0.0) {
-          both_ways[k] = 1;
+          both_ways[ground][k] = 1;
         }
       }
     }
-  for (size_t k = 0; k < g.tangent.size(); ++k) {
-    if (both_ways[k]) g.tangent[k].setZero();
-    g.any = g.any || !g.tangent[k].isZero();
+  g.on_ground.assign(groups, 0);
+  for (size_t k = 0; k < groups; ++k) {
+    const int ground = against[1][k].isZero() ? 0 : 1;
+    g.on_ground[k] = static_cast<char>(ground);
+    if (!both_ways[ground][k]) g.tangent[k] = against[ground][k];
   }
+  if (!held.empty())
+    for (int b = 0; b < n; ++b)
+      if (held[b] && g.group[b] >= 0) g.tangent[g.group[b]].setZero();
+  for (size_t k = 0; k < groups; ++k) g.any = g.any || !g.tangent[k].isZero();
   return g;
 }
 
@@ -145,6 +160,9 @@ void slide_whole_faces(const BlockSystem& s, ContactSet& contacts, const Sliding
       const int k = g.group[b];
       const int other = b == m.block_a ? m.block_b : m.block_a;
       if (k < 0 || g.group[other] == k || g.tangent[k].isZero()) continue;
+      // Only the faces its slip was read from: the lower block of a weaker joint slides down its
+      // face, and the joint above it is the upper block's to set.
+      if ((g.group[other] < 0) != static_cast<bool>(g.on_ground[k])) continue;
       const Vec2& t = g.tangent[k];
       if (std::abs(t.x() * m.tangent.y() - t.y() * m.tangent.x()) > kParallelSine) continue;
       slide_loaded_points(s, m, b, t, kLoadedShare * largest, step);
@@ -159,7 +177,7 @@ void slide_whole_faces(const BlockSystem& s, ContactSet& contacts, const Sliding
 // face are set sliding down it, at their caps.
 void slide_overloaded_groups(const BlockSystem& s, ContactSet& contacts, const std::vector<char>& settled,
                              const std::vector<Vec6>& velocities, const StepParameters& step) {
-  const SlidingGroups g = sliding_groups(s, contacts, settled);
+  const SlidingGroups g = sliding_groups(s, contacts, settled, {});
   const size_t groups = g.tangent.size();
   const double largest = largest_normal_force(contacts);
   std::vector<Vec2> face(groups, Vec2::Zero());
@@ -195,28 +213,65 @@ void slide_overloaded_groups(const BlockSystem& s, ContactSet& contacts, const s
     }
 }
 
+// Per group, t . sum F_i: the net force along its slip of the blocks of each sliding group (zero
+// for the others). F's translation rows hold each block's net force at D = 0 (gravity, the
+// springs' present forces and the sliding points' friction; assemble.hpp, with the blocks'
+// velocities zero); the forces between blocks of the group cancel in the sum.
+std::vector<double> net_force_along(const BlockSystem& s, const SlidingGroups& g, const Eigen::VectorXd& f) {
+  std::vector<double> along(g.tangent.size(), 0.0);
+  for (int b = 0; b < static_cast<int>(s.blocks.size()); ++b) {
+    const int k = g.group[b];
+    if (k >= 0 && !g.tangent[k].isZero()) along[k] += g.tangent[k].dot(f.segment<2>(6 * s.blocks[b].unknown));
+  }
+  return along;
+}
+
+// Groups whose net force points against their slip, friction at the caps of their sliding points
+// holding more than pulls them, do not slide: the lower block of a weaker joint, whose face the
+// locked settling overloaded with the upper block's weight too (a 35 deg face at 30 deg under a
+// joint at 20 deg: g sin a + g cos a tan phi_j < 2 g cos a tan phi_b). Their sliding points on the
+// side their slip was read from lock at the force they carry. A group that slipped against the
+// ground is held for the rest of the stage; one that slipped against another group joins it
+// through the locked points (a block riding on a sliding block). Returns whether any group stopped.
+bool hold_stopped_groups(const BlockSystem& s, const SlidingGroups& g, const Eigen::VectorXd& f,
+                         ContactSet& contacts, std::vector<char>& held) {
+  const std::vector<double> along = net_force_along(s, g, f);
+  std::vector<char> stopped(along.size(), 0);
+  bool any = false;
+  for (size_t k = 0; k < along.size(); ++k)
+    if (!g.tangent[k].isZero() && along[k] <= 0.0) stopped[k] = 1, any = true;
+  if (!any) return false;
+  for (ContactManifold& m : contacts.manifolds)
+    for (const int b : {m.block_a, m.block_b}) {
+      const int k = g.group[b];
+      const int other = b == m.block_a ? m.block_b : m.block_a;
+      if (k < 0 || !stopped[k] || g.group[other] == k || (g.group[other] < 0) != static_cast<bool>(g.on_ground[k]))
+        continue;
+      for (int q = 0; q < m.point_count; ++q)
+        if (m.points[q].spring.state == ContactState::Sliding) m.points[q].spring.state = ContactState::Locked;
+    }
+  for (int b = 0; b < static_cast<int>(s.blocks.size()); ++b)
+    if (g.group[b] >= 0 && stopped[g.group[b]] && g.on_ground[g.group[b]]) held[b] = 1;
+  return true;
+}
+
 // d'Alembert's load on each block of a sliding group: -m_i a t, a the group's net force along
-// its slip t over its mass. F's translation rows hold each block's net force at D = 0 (gravity,
-// the springs' present forces and the sliding points' friction; assemble.hpp, with the blocks'
-// velocities zero); the forces between blocks of the group cancel in the sum. Returns false,
-// and adds nothing, if a group is held by its friction (its net force points against its slip)
-// or is given a velocity: this stage settles blocks that start sliding from rest. (Tried on
-// blocks given a velocity too, it changed what a row struck by a square block sliding at its
-// tipping limit, friction 45 deg, does: rebounds of 13 % of the impact speed, over the 11 % of
-// tests/test_impact_rows.cpp, with the blocks listed in reverse.)
+// its slip t over its mass (net_force_along). Each group takes its own: the blocks of a weaker
+// joint slide apart. Returns false, and adds nothing, if a group is given a velocity: this stage
+// settles blocks that start sliding from rest. (Tried on blocks given a velocity too, it changed
+// what a row struck by a square block sliding at its tipping limit, friction 45 deg, does:
+// rebounds of 13 % of the impact speed, over the 11 % of tests/test_impact_rows.cpp, with the
+// blocks listed in reverse.)
 bool add_inertial_loads(const BlockSystem& s, const SlidingGroups& g, const std::vector<Vec6>& velocities,
                         Eigen::VectorXd& f) {
-  const size_t groups = g.tangent.size();
-  std::vector<double> along(groups, 0.0), mass(groups, 0.0), speed(groups, 0.0);
+  const std::vector<double> along = net_force_along(s, g, f);
+  std::vector<double> mass(along.size(), 0.0);
   for (int b = 0; b < static_cast<int>(s.blocks.size()); ++b) {
     const int k = g.group[b];
     if (k < 0 || g.tangent[k].isZero()) continue;
-    along[k] += g.tangent[k].dot(f.segment<2>(6 * s.blocks[b].unknown));
+    if (velocities[b].head<3>().norm() != 0.0) return false;
     mass[k] += s.mass(b);
-    speed[k] += velocities[b].head<3>().norm();
   }
-  for (size_t k = 0; k < groups; ++k)
-    if (along[k] < 0.0 || speed[k] != 0.0) return false;
   for (int b = 0; b < static_cast<int>(s.blocks.size()); ++b) {
     const int k = g.group[b];
     if (k < 0 || g.tangent[k].isZero()) continue;
@@ -235,7 +290,7 @@ int settle_sliding_groups(ImplicitStepContext& ctx, const StepParameters& relaxe
   // What a failed attempt goes back to.
   const ContactSet contacts = ctx.contacts;
   slide_overloaded_groups(s, ctx.contacts, settled, velocities, step);
-  if (!sliding_groups(s, ctx.contacts, settled).any) {
+  if (!sliding_groups(s, ctx.contacts, settled, {}).any) {
     ctx.contacts = contacts;
     return 0;
   }
@@ -251,18 +306,22 @@ int settle_sliding_groups(ImplicitStepContext& ctx, const StepParameters& relaxe
   quasi.time_step *= kSlidingStepScale;
   int pass = 0;
   double first = 0.0;  // the first pass's largest move
+  std::vector<char> held(s.blocks.size(), 0);
+  // Each stop holds a group or joins two, so there are fewer than the blocks.
+  int stops = 0;
   while (pass < ctx.options.settle_passes) {
-    const SlidingGroups g = sliding_groups(s, ctx.contacts, settled);
+    const SlidingGroups g = sliding_groups(s, ctx.contacts, settled, held);
     if (!g.resolved) {
       restore();
       return 0;
     }
     if (!g.any) break;
     slide_whole_faces(s, ctx.contacts, g, step);
-    ++pass;
     set_velocities(false);  // a static pass: no inertia carried in
     assemble(s, ctx.contacts, quasi, eq);
-    if (!add_inertial_loads(s, g, velocities, eq.f)) {  // friction holds a group: it does not slide
+    if (hold_stopped_groups(s, g, eq.f, ctx.contacts, held) && ++stops < static_cast<int>(s.blocks.size())) continue;
+    ++pass;
+    if (!add_inertial_loads(s, g, velocities, eq.f)) {  // a group given a velocity: left as given
       restore();
       return 0;
     }
@@ -306,8 +365,12 @@ int settle_sliding_groups(ImplicitStepContext& ctx, const StepParameters& relaxe
     if (pass == 1) first = largest;
     if (largest <= kSlidingTolerance * first) break;
   }
+  if (pass == 0) {  // no group slides after all: the settled state as it was
+    restore();
+    return 0;
+  }
   // The last detection may have found points again, locked: they slide with their group too.
-  if (const SlidingGroups g = sliding_groups(s, ctx.contacts, settled); g.resolved && g.any)
+  if (const SlidingGroups g = sliding_groups(s, ctx.contacts, settled, held); g.resolved && g.any)
     slide_whole_faces(s, ctx.contacts, g, step);
   set_velocities(true);
   return pass;

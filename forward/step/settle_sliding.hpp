@@ -13,14 +13,16 @@
 //
 // Here the settling is done again with the sliding points at their cap (and the points of a group
 // whose weight along its one face exceeds that face's caps, set sliding), in the frame of each
-// sliding group (the settled free blocks joined by their loaded points): each block
-// carries d'Alembert's load -m_i a, a the group's acceleration along the face it slides on,
-// the net force along that face over the group's mass (seed Eq. 4 for one block). The group is
-// then in equilibrium, and the settling finds the normal forces, rotations and strains it slides
-// with. The stage leaves the settled state as it was when any group slides on faces that are
-// not parallel (no one acceleration along them: the Vajont sections' masses), is held by its
-// friction or is given a velocity, or when a pass fails or would move a block too far.
-// docs/theory.md §6, "Blocks that start sliding".
+// sliding group (the settled free blocks joined by their loaded points that do not slide): each
+// block carries d'Alembert's load -m_i a, a the group's acceleration along the face it slides on,
+// the net force along that face over the group's mass (seed Eq. 4 for one block). Groups joined
+// by a sliding point (a block on a weaker joint of the block beneath it) take their own
+// accelerations; a group whose net force points against its slip is held, its sliding points
+// locked (model revision 2026-12-06.9). Each group is then in equilibrium, and the settling finds
+// the normal forces, rotations and strains it slides with. The stage leaves the settled state as
+// it was when any group slides on faces that are not parallel (no one acceleration along them:
+// the Vajont sections' masses), when no group slides or one is given a velocity, or when a pass
+// fails or would move a block too far. docs/theory.md §6, "Blocks that start sliding".
 #pragma once
 
 #include <vector>
