@@ -23,6 +23,8 @@ namespace ddafit {
 // the 5 % of a 5 cm step under a 1 m block, which must stop a block arriving at 2 m/s
 // (test_joint_crossing.cpp).
 inline constexpr double kFlushRatio = 0.02;
+// ... and at most this share of the thinner piece's least width (collide.cpp).
+inline constexpr double kFlushWidthShare = 0.5;
 // Of the smaller free block's size (the square root of its area): the least depth of a proud
 // edge (manifold.hpp, "Proud edges") when the linear slop is smaller. A row block loaded by a
 // 3 m x 1.5 m slider sat 1.6 um deeper than its unloaded neighbour; with the displacement limit

@@ -20,6 +20,7 @@ struct ConvexPiece {
   int block = -1;
   int first = 0;
   int count = 0;
+  double width = 0.0;  // m: its least width at t = 0, across the narrowest strip that holds it
 };
 
 struct ContactShapes {
