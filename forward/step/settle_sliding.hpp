@@ -18,11 +18,13 @@
 // the net force along that face over the group's mass (seed Eq. 4 for one block). Groups joined
 // by a sliding point (a block on a weaker joint of the block beneath it) take their own
 // accelerations; a group whose net force points against its slip is held, its sliding points
-// locked (model revision 2026-12-06.9). Each group is then in equilibrium, and the settling finds
-// the normal forces, rotations and strains it slides with. The stage leaves the settled state as
-// it was when any group slides on faces that are not parallel (no one acceleration along them:
-// the Vajont sections' masses), when no group slides or one is given a velocity, or when a pass
-// fails or would move a block too far. docs/theory.md §6, "Blocks that start sliding".
+// locked (model revision 2026-12-06.9), and settled with them so (.06.11: a block held on a
+// slope whose rear corner passed its cap in the first settling). Each group is then in
+// equilibrium, and the settling finds the normal forces, rotations and strains it slides (or
+// rests) with. The stage leaves the settled state as it was when any group slides on faces that
+// are not parallel (no one acceleration along them: the Vajont sections' masses), when no group
+// slides or is held, or one is given a velocity, or when a pass fails or would move a block too
+// far. docs/theory.md §6, "Blocks that start sliding".
 #pragma once
 
 #include <vector>
