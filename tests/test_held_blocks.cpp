@@ -12,9 +12,11 @@
 #include <cmath>
 #include <functional>
 #include <iostream>
+#include <sstream>
 #include <string>
 #include <vector>
 
+#include "tests/contact_scene_audit.hpp"
 #include "tests/slope_scene.hpp"
 
 namespace ddafit {
@@ -90,6 +92,61 @@ TEST(HeldBlocks, BlocksHeldByTheirFrictionStayImplicit) {
 TEST(HeldBlocks, DISABLED_FlatBlocksHeldByTheirFrictionStayImplicit) {
   expect_held_blocks_stay(Integrator::Implicit, flat);
 }
+
+// A square block held on a free plate that rests on a fixed face (both interfaces held by 12 % of
+// their capacity: tan(phi) = tan(alpha) / 0.88): blocks of 2, 20 and 200 m on plates 0.02 and 0.2
+// of their side thick and three times as long, on 20 and 35 deg, at 0.05 and 0.2 L/c, 1 s. Neither
+// should move; tolerance as above.
+void expect_block_on_free_plate_stays(Integrator integrator) {
+  int runs = 0, bad = 0;
+  double worst = 0.0;
+  for (const double side : {2.0, 20.0, 200.0})
+    for (const double thickness : {0.02, 0.2})
+      for (const double slope_angle : {20.0, 35.0})
+        for (const double share : {0.05, 0.2}) {
+          ++runs;
+          const double c = std::sqrt(5.0e9 / kRockDensity);
+          Scene s = base_scene(1.0, share * side / c, 0.1, integrator);
+          add_interface(s, "face", std::atan(std::tan(slope_angle * kDegree) / 0.88) / kDegree);
+          s.default_interface = 0;
+          const Slope slope(slope_angle);
+          const double t = thickness * side;
+          s.blocks.push_back(block("base", {slope.at(0, 0), slope.at(0, -side), slope.at(4 * side, -side),
+                                            slope.at(4 * side, 0)}, true));
+          s.blocks.push_back(block("plate", box(slope.at(0.5 * side, 0), slope.along, slope.up, 3 * side, t), false));
+          s.blocks.push_back(block("block", box(slope.at(side, t), slope.along, slope.up, side, side), false));
+          s.measure.push_back({"centre", slope.at(1.5 * side, t + 0.5 * side)});
+          const SimulationResult r = simulate(s);
+          std::ostringstream label;
+          label << name_of(integrator) << ": " << side << " m block on a free plate " << t << " m thick, "
+                << slope_angle << " deg, step " << share << " L/c";
+          if (r.summary.status != RunStatus::Completed) {
+            ADD_FAILURE() << label.str() << ": " << r.summary.message;
+            ++bad;
+            continue;
+          }
+          double largest = 0.0;
+          for (const HistoryRow& row : r.history) largest = std::max(largest, row.displacement.norm());
+          EXPECT_LT(largest / side, kHeldTolerance) << label.str();
+          if (largest / side >= kHeldTolerance) ++bad;
+          worst = std::max(worst, largest / side);
+        }
+  std::cout << "[measured] " << name_of(integrator) << ", " << runs << " blocks on free plates: " << bad
+            << " stopped or moved more than 1e-4 of their side, worst completed " << worst << "\n";
+}
+
+TEST(HeldBlocks, ABlockOnAFreePlateStaysSubstep) { expect_block_on_free_plate_stays(Integrator::Substep); }
+
+// Known defect (docs/theory.md, Known limits (n); found 2026-12-06, the same with the build before
+// the revisions of 2026-12-06.9 to .12): the implicit solver stops 8 of these 24 on "contacts are
+// creating energy", every one on 35 deg (5 within 12 steps); the 20 deg ones hold, and the substep
+// solver holds all 24 (worst 4.2e-7). The first settling shares the block's shear evenly between its corners on
+// the plate; the rear corner passes its cap and starts sliding, the block out of balance by the
+// excess (0.69 MN/m for 20 m on a 4 m plate at 35 deg), and no stage settles it again: the block
+// and plate, joined through the front corner, form one group that does not slide as a whole
+// (forward/step/settle_sliding.cpp). Holding such inner slips (locked at their caps, settled again)
+// mended the thicker plates but not the thinner, and was not kept.
+TEST(HeldBlocks, DISABLED_ABlockOnAFreePlateStaysImplicit) { expect_block_on_free_plate_stays(Integrator::Implicit); }
 
 }  // namespace
 }  // namespace ddafit
