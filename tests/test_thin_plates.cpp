@@ -32,8 +32,8 @@ void expect_blocks_on_thin_plates_stay(Integrator integrator) {
         s.default_interface = 0;
         const Slope slope(slope_angle);
         const double t = thickness * side;
-        s.blocks.push_back(block("plate", {slope.at(0, 0), slope.at(0, -t), slope.at(4 * side, -t), slope.at(4 * side, 0)},
-                                 true));
+        s.blocks.push_back(
+            block("plate", {slope.at(0, 0), slope.at(0, -t), slope.at(4 * side, -t), slope.at(4 * side, 0)}, true));
         s.blocks.push_back(block("block", box(slope.at(side, 0), slope.along, slope.up, side, side), false));
         s.measure.push_back({"centre", slope.at(1.5 * side, 0.5 * side)});
         const SimulationResult r = simulate(s);

@@ -7,15 +7,12 @@
 
 #include "forward/common/displace_block.hpp"
 #include "forward/contact/contact_law.hpp"
+#include "forward/step/held_groups.hpp"
 #include "forward/step/settle_contacts.hpp"
+#include "forward/step/sliding_groups.hpp"
 
 namespace ddafit {
 namespace {
-
-// A point carries load when its normal force is above this share of the largest one: points
-// at rest beside each other (the flush sides of a row of cubes) have no normal force, and
-// their "sliding" is no slide of a block.
-constexpr double kLoadedShare = 1e-6;
 
 // The passes stop once a pass moves no block by more than this share of the first pass's
 // largest move. Not settle_contacts' share of max_shift: that scales with the model (2.5 mm
@@ -28,28 +25,6 @@ constexpr double kSlidingTolerance = 1e-3;
 // took 28 passes (its strain moving by a fifth less each pass); at ten times it, 4.
 constexpr double kSlidingStepScale = 10.0;
 
-// Two faces are parallel when the sine of the angle between them is under this (0.06 deg).
-constexpr double kParallelSine = 1e-3;
-
-struct SlidingGroups {
-  std::vector<int> group;       // per block: its group, -1 if not settled or fixed
-  std::vector<Vec2> tangent;    // per group: the direction it slides in along its face, zero if none
-  std::vector<char> on_ground;  // per group: its tangent is its slip against blocks outside the settled ones
-  bool resolved = true;         // false: a group slides on faces that are not parallel
-  bool any = false;             // a group slides
-};
-
-// The direction along m.tangent in which block `b` (of the manifold) moves against the other.
-double side(const ContactManifold& m, int b) { return b == m.block_b ? 1.0 : -1.0; }
-
-// The largest normal force of any point: kLoadedShare is a share of it.
-double largest_normal_force(const ContactSet& contacts) {
-  double largest = 0.0;
-  for (const ContactManifold& m : contacts.manifolds)
-    for (int q = 0; q < m.point_count; ++q) largest = std::max(largest, m.points[q].spring.normal_force);
-  return largest;
-}
-
 // The deepest overlap of any closed point, m.
 double deepest_overlap(const ContactSet& contacts) {
   double deepest = 0.0;
@@ -57,83 +32,6 @@ double deepest_overlap(const ContactSet& contacts) {
     for (int q = 0; q < m.point_count; ++q)
       if (m.points[q].spring.state != ContactState::Open) deepest = std::max(deepest, -m.points[q].separation);
   return deepest;
-}
-
-int find(std::vector<int>& parent, int i) {
-  while (parent[i] != i) i = parent[i] = parent[parent[i]];
-  return i;
-}
-
-// The settled free blocks joined by loaded points that do not slide, and the direction each group
-// slides in. Blocks joined by a sliding point slip against each other (a block on a weaker joint of
-// the block beneath it), each group at its own acceleration; where the joint is as strong as the
-// face below, both accelerations come out equal (add_inertial_loads), as one group's would. A group
-// with a block in `held` does not slide.
-SlidingGroups sliding_groups(const BlockSystem& s, const ContactSet& contacts, const std::vector<char>& settled,
-                             const std::vector<char>& held) {
-  const int n = static_cast<int>(s.blocks.size());
-  const auto member = [&](int b) { return s.blocks[b].unknown >= 0 && settled[b]; };
-  const double largest = largest_normal_force(contacts);
-  const auto loaded = [&](const ContactPoint& p) {
-    return p.spring.state != ContactState::Open && p.spring.normal_force > kLoadedShare * largest;
-  };
-  std::vector<int> parent(n);
-  std::iota(parent.begin(), parent.end(), 0);
-  for (const ContactManifold& m : contacts.manifolds)
-    for (int q = 0; q < m.point_count; ++q)
-      if (loaded(m.points[q]) && m.points[q].spring.state != ContactState::Sliding && member(m.block_a) &&
-          member(m.block_b))
-        parent[find(parent, m.block_a)] = find(parent, m.block_b);
-  SlidingGroups g;
-  g.group.assign(n, -1);
-  std::vector<int> id(n, -1);
-  for (int b = 0; b < n; ++b) {
-    if (!member(b)) continue;
-    const int root = find(parent, b);
-    if (id[root] < 0) id[root] = static_cast<int>(g.tangent.size()), g.tangent.emplace_back(Vec2::Zero());
-    g.group[b] = id[root];
-  }
-  const size_t groups = g.tangent.size();
-  // Each sliding point tells the direction its group slips in against the block across it: s along
-  // the tangent for block b against a (SpringState::slip_direction). Slips against the ground (a
-  // block that is not a settled free one) are what the group does; slips against another group
-  // only say how the two part (the lower block of a weaker joint slips down its face and up
-  // against the block above), and are taken where the group slips against no ground. A group
-  // whose points slip both ways along one face (a block at rest whose base corners spread apart
-  // under its own weight, Poisson's ratio) is not sliding.
-  std::vector<Vec2> against[2] = {std::vector<Vec2>(groups, Vec2::Zero()), std::vector<Vec2>(groups, Vec2::Zero())};
-  std::vector<char> both_ways[2] = {std::vector<char>(groups, 0), std::vector<char>(groups, 0)};
-  for (const ContactManifold& m : contacts.manifolds)
-    for (int q = 0; q < m.point_count; ++q) {
-      const SpringState& c = m.points[q].spring;
-      if (!loaded(m.points[q]) || c.state != ContactState::Sliding || c.slip_direction == 0.0) continue;
-      for (const int b : {m.block_a, m.block_b}) {
-        const int k = g.group[b];
-        const int other = b == m.block_a ? m.block_b : m.block_a;
-        if (k < 0 || g.group[other] == k) continue;
-        const int ground = g.group[other] < 0 ? 1 : 0;
-        const Vec2 slips = side(m, b) * c.slip_direction * m.tangent;
-        Vec2& t = against[ground][k];
-        if (t.isZero()) {
-          t = slips;
-        } else if (std::abs(t.x() * slips.y() - t.y() * slips.x()) > kParallelSine) {
-          g.resolved = false;
-        } else if (t.dot(slips) < 0.0) {
-          both_ways[ground][k] = 1;
-        }
-      }
-    }
-  g.on_ground.assign(groups, 0);
-  for (size_t k = 0; k < groups; ++k) {
-    const int ground = against[1][k].isZero() ? 0 : 1;
-    g.on_ground[k] = static_cast<char>(ground);
-    if (!both_ways[ground][k]) g.tangent[k] = against[ground][k];
-  }
-  if (!held.empty())
-    for (int b = 0; b < n; ++b)
-      if (held[b] && g.group[b] >= 0) g.tangent[g.group[b]].setZero();
-  for (size_t k = 0; k < groups; ++k) g.any = g.any || !g.tangent[k].isZero();
-  return g;
 }
 
 // Sets m's closed points carrying more than `loaded` sliding at their caps, block b of the manifold
@@ -214,79 +112,6 @@ void slide_overloaded_groups(const BlockSystem& s, ContactSet& contacts, const s
     }
 }
 
-// Per group, t . sum F_i: the net force along its slip of the blocks of each sliding group (zero
-// for the others). F's translation rows hold each block's net force at D = 0 (gravity, the
-// springs' present forces and the sliding points' friction; assemble.hpp, with the blocks'
-// velocities zero); the forces between blocks of the group cancel in the sum.
-std::vector<double> net_force_along(const BlockSystem& s, const SlidingGroups& g, const Eigen::VectorXd& f) {
-  std::vector<double> along(g.tangent.size(), 0.0);
-  for (int b = 0; b < static_cast<int>(s.blocks.size()); ++b) {
-    const int k = g.group[b];
-    if (k >= 0 && !g.tangent[k].isZero()) along[k] += g.tangent[k].dot(f.segment<2>(6 * s.blocks[b].unknown));
-  }
-  return along;
-}
-
-// Groups whose net force points against their slip, friction at the caps of their sliding points
-// holding more than pulls them, do not slide: the lower block of a weaker joint, whose face the
-// locked settling overloaded with the upper block's weight too (a 35 deg face at 30 deg under a
-// joint at 20 deg: g sin a + g cos a tan phi_j < 2 g cos a tan phi_b). Their sliding points on the
-// side their slip was read from lock at the force they carry. A group that slipped against the
-// ground is held for the rest of the stage; one that slipped against another group joins it
-// through the locked points (a block riding on a sliding block).
-//
-// A group whose weight along its face exceeds the caps of its loaded points there, m g . t above
-// sum (tan(phi) N + c l), cannot be held, whatever its net force says (its locked points may still
-// pull with the first settling's shear): a tall slider 1 deg steeper than its friction, its load
-// on its front corners, was so read as held, and started stuck (4 more of the 216 tall sliders of
-// tests/test_tall_sliders.cpp off seed Eq. 4). The stage is then left (Hold::Unclear).
-enum class Hold { None, Held, Unclear };
-Hold hold_stopped_groups(const BlockSystem& s, const SlidingGroups& g, const std::vector<Vec6>& velocities,
-                         const Eigen::VectorXd& f, const Vec2& gravity, ContactSet& contacts, std::vector<char>& held) {
-  const std::vector<double> along = net_force_along(s, g, f);
-  std::vector<char> stopped(along.size(), 0);
-  for (size_t k = 0; k < along.size(); ++k) stopped[k] = !g.tangent[k].isZero() && along[k] <= 0.0;
-  // A group given a velocity is left as given (add_inertial_loads): friction slowing it is no hold.
-  std::vector<double> demand(along.size(), 0.0), capacity(along.size(), 0.0);
-  for (int b = 0; b < static_cast<int>(s.blocks.size()); ++b) {
-    const int k = g.group[b];
-    if (k < 0) continue;
-    if (velocities[b].head<3>().norm() != 0.0) stopped[k] = 0;
-    demand[k] += s.mass(b) * std::abs(g.tangent[k].dot(gravity));
-  }
-  const bool any = std::find(stopped.begin(), stopped.end(), 1) != stopped.end();
-  if (!any) return Hold::None;
-  const double largest = largest_normal_force(contacts);
-  for (const ContactManifold& m : contacts.manifolds)
-    for (const int b : {m.block_a, m.block_b}) {
-      const int k = g.group[b];
-      const int other = b == m.block_a ? m.block_b : m.block_a;
-      if (k < 0 || !stopped[k] || g.group[other] == k) continue;
-      const Vec2& t = g.tangent[k];
-      if (std::abs(t.x() * m.tangent.y() - t.y() * m.tangent.x()) > kParallelSine) continue;  // not its face
-      for (int q = 0; q < m.point_count; ++q) {
-        const ContactPoint& p = m.points[q];
-        if (p.spring.state == ContactState::Open || p.spring.normal_force <= kLoadedShare * largest) continue;
-        capacity[k] +=
-            coulomb_cap(m.friction, p.spring.normal_force, cohesive_strength(s.interfaces[m.interface], p));
-      }
-    }
-  for (size_t k = 0; k < along.size(); ++k)
-    if (stopped[k] && demand[k] > capacity[k]) return Hold::Unclear;
-  for (ContactManifold& m : contacts.manifolds)
-    for (const int b : {m.block_a, m.block_b}) {
-      const int k = g.group[b];
-      const int other = b == m.block_a ? m.block_b : m.block_a;
-      if (k < 0 || !stopped[k] || g.group[other] == k || (g.group[other] < 0) != static_cast<bool>(g.on_ground[k]))
-        continue;
-      for (int q = 0; q < m.point_count; ++q)
-        if (m.points[q].spring.state == ContactState::Sliding) m.points[q].spring.state = ContactState::Locked;
-    }
-  for (int b = 0; b < static_cast<int>(s.blocks.size()); ++b)
-    if (g.group[b] >= 0 && stopped[g.group[b]] && g.on_ground[g.group[b]]) held[b] = 1;
-  return Hold::Held;
-}
-
 // d'Alembert's load on each block of a sliding group: -m_i a t, a the group's net force along
 // its slip t over its mass (net_force_along). Each group takes its own: the blocks of a weaker
 // joint slide apart. Returns false, and adds nothing, if a group is given a velocity: this stage
@@ -308,49 +133,6 @@ bool add_inertial_loads(const BlockSystem& s, const SlidingGroups& g, const std:
     const int k = g.group[b];
     if (k < 0 || g.tangent[k].isZero()) continue;
     f.segment<2>(6 * s.blocks[b].unknown) -= s.mass(b) * (along[k] / mass[k]) * g.tangent[k];
-  }
-  return true;
-}
-
-// Whether every held block can be held by friction: the shear its faces against the ground carry,
-// |sum T|, within their caps, tan(phi) N' + c l, with N' the normal load the block brings to
-// them, its weight across the face and what the blocks resting on it press on it. Not the
-// springs' own N: a tall slider 1 deg steeper than its friction (r = 0.9, 3 m long) was settled
-// with its front points carrying 1.19 times its weight across the face, so its spring caps held
-// it; left as the first settling had it, as before revision 2026-12-06.11 (4 of the 216 tall
-// sliders of tests/test_tall_sliders.cpp ran off seed Eq. 4 otherwise).
-bool holds_within_caps(const BlockSystem& s, const ContactSet& contacts, const std::vector<char>& settled,
-                       const std::vector<char>& held, const Vec2& gravity, double shear_penalty) {
-  const size_t n = s.blocks.size();
-  std::vector<Vec2> shear(n, Vec2::Zero()), face(n, Vec2::Zero());
-  std::vector<double> cohesion(n, 0.0), load(n, 0.0), mu(n, std::numeric_limits<double>::infinity());
-  const auto member = [&](int b) { return s.blocks[b].unknown >= 0 && settled[b]; };
-  for (const ContactManifold& m : contacts.manifolds)
-    for (const int b : {m.block_a, m.block_b}) {
-      const int other = b == m.block_a ? m.block_b : m.block_a;
-      if (!held[b] || member(other)) continue;
-      face[b] = side(m, b) * m.normal;  // from the ground towards b
-      mu[b] = std::min(mu[b], m.friction);
-      for (int q = 0; q < m.point_count; ++q) {
-        const ContactPoint& p = m.points[q];
-        if (p.spring.state == ContactState::Open) continue;
-        shear[b] += side(m, b) * shear_penalty * p.spring.shear_offset * m.tangent;
-        cohesion[b] += cohesive_strength(s.interfaces[m.interface], p);
-      }
-    }
-  // What the free blocks resting on a held block press on it across its face.
-  for (const ContactManifold& m : contacts.manifolds)
-    for (const int b : {m.block_a, m.block_b}) {
-      const int other = b == m.block_a ? m.block_b : m.block_a;
-      if (!held[b] || !member(other) || face[b].isZero()) continue;
-      for (int q = 0; q < m.point_count; ++q)
-        if (m.points[q].spring.state != ContactState::Open)
-          load[b] += m.points[q].spring.normal_force * std::max(0.0, -(side(m, b) * m.normal).dot(face[b]));
-    }
-  for (size_t b = 0; b < n; ++b) {
-    if (!held[b] || face[b].isZero()) continue;
-    const double normal = s.mass(static_cast<int>(b)) * std::max(0.0, -gravity.dot(face[b])) + load[b];
-    if (shear[b].norm() > coulomb_cap(mu[b], normal, cohesion[b])) return false;
   }
   return true;
 }
@@ -449,8 +231,10 @@ int settle_sliding_groups(ImplicitStepContext& ctx, const StepParameters& relaxe
     if (pass == 1) first = largest;
     if (largest <= kSlidingTolerance * first) break;
   }
-  if (pass == 0 || (stops > 0 && !holds_within_caps(s, ctx.contacts, settled, held, step.gravity, step.shear_penalty))) {
-    restore();  // no group slides or is held after all: the settled state as it was
+  // No group slides or is held after all, or a hold friction cannot give: the settled state as it was.
+  if (pass == 0 || (stops > 0 && !holds_within_caps(s, ctx.contacts, settled, held, step.gravity,
+                                                    step.shear_penalty))) {
+    restore();
     return 0;
   }
   // The last detection may have found points again, locked: they slide with their group too.
