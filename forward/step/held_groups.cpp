@@ -8,39 +8,15 @@
 
 namespace ddafit {
 
-Hold hold_stopped_groups(const BlockSystem& s, const SlidingGroups& g, const std::vector<Vec6>& velocities,
-                         const Eigen::VectorXd& f, const Vec2& gravity, ContactSet& contacts,
-                         std::vector<char>& held) {
+bool hold_stopped_groups(const BlockSystem& s, const SlidingGroups& g, const std::vector<Vec6>& velocities,
+                         const Eigen::VectorXd& f, ContactSet& contacts, std::vector<char>& held) {
   const std::vector<double> along = net_force_along(s, g, f);
   std::vector<char> stopped(along.size(), 0);
   for (size_t k = 0; k < along.size(); ++k) stopped[k] = !g.tangent[k].isZero() && along[k] <= 0.0;
   // A group given a velocity is left as given (add_inertial_loads): friction slowing it is no hold.
-  std::vector<double> demand(along.size(), 0.0), capacity(along.size(), 0.0);
-  for (int b = 0; b < static_cast<int>(s.blocks.size()); ++b) {
-    const int k = g.group[b];
-    if (k < 0) continue;
-    if (velocities[b].head<3>().norm() != 0.0) stopped[k] = 0;
-    demand[k] += s.mass(b) * std::abs(g.tangent[k].dot(gravity));
-  }
-  const bool any = std::find(stopped.begin(), stopped.end(), 1) != stopped.end();
-  if (!any) return Hold::None;
-  const double largest = largest_normal_force(contacts);
-  for (const ContactManifold& m : contacts.manifolds)
-    for (const int b : {m.block_a, m.block_b}) {
-      const int k = g.group[b];
-      const int other = b == m.block_a ? m.block_b : m.block_a;
-      if (k < 0 || !stopped[k] || g.group[other] == k) continue;
-      const Vec2& t = g.tangent[k];
-      if (std::abs(t.x() * m.tangent.y() - t.y() * m.tangent.x()) > kParallelSine) continue;  // not its face
-      for (int q = 0; q < m.point_count; ++q) {
-        const ContactPoint& p = m.points[q];
-        if (p.spring.state == ContactState::Open || p.spring.normal_force <= kLoadedShare * largest) continue;
-        capacity[k] +=
-            coulomb_cap(m.friction, p.spring.normal_force, cohesive_strength(s.interfaces[m.interface], p));
-      }
-    }
-  for (size_t k = 0; k < along.size(); ++k)
-    if (stopped[k] && demand[k] > capacity[k]) return Hold::Unclear;
+  for (int b = 0; b < static_cast<int>(s.blocks.size()); ++b)
+    if (g.group[b] >= 0 && velocities[b].head<3>().norm() != 0.0) stopped[g.group[b]] = 0;
+  if (std::find(stopped.begin(), stopped.end(), 1) == stopped.end()) return false;
   for (ContactManifold& m : contacts.manifolds)
     for (const int b : {m.block_a, m.block_b}) {
       const int k = g.group[b];
@@ -52,7 +28,7 @@ Hold hold_stopped_groups(const BlockSystem& s, const SlidingGroups& g, const std
     }
   for (int b = 0; b < static_cast<int>(s.blocks.size()); ++b)
     if (g.group[b] >= 0 && stopped[g.group[b]] && g.on_ground[g.group[b]]) held[b] = 1;
-  return Hold::Held;
+  return true;
 }
 
 bool holds_within_caps(const BlockSystem& s, const ContactSet& contacts, const std::vector<char>& settled,

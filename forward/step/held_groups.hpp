@@ -17,15 +17,9 @@ namespace ddafit {
 // ground is held for the rest of the stage; one that slipped against another group joins it
 // through the locked points (a block riding on a sliding block).
 //
-// A group whose weight along its face exceeds the caps of its loaded points there, m g . t above
-// sum (tan(phi) N + c l), cannot be held, whatever its net force says (its locked points may still
-// pull with the first settling's shear): the stage is then left as the first settling had it
-// (Hold::Unclear). Where the springs' N itself is too high (tall sliders), holds_within_caps
-// below catches it.
-enum class Hold { None, Held, Unclear };
-Hold hold_stopped_groups(const BlockSystem& s, const SlidingGroups& g, const std::vector<Vec6>& velocities,
-                         const Eigen::VectorXd& f, const Vec2& gravity, ContactSet& contacts,
-                         std::vector<char>& held);
+// Returns whether any group stopped. Whether friction can give the hold is holds_within_caps'.
+bool hold_stopped_groups(const BlockSystem& s, const SlidingGroups& g, const std::vector<Vec6>& velocities,
+                         const Eigen::VectorXd& f, ContactSet& contacts, std::vector<char>& held);
 
 // Whether every held block can be held by friction: the shear its faces against the ground carry,
 // |sum T|, within their caps, tan(phi) N' + c l, with N' the normal load the block brings to

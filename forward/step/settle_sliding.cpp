@@ -63,7 +63,7 @@ void slide_whole_faces(const BlockSystem& s, ContactSet& contacts, const Sliding
       // face, and the joint above it is the upper block's to set.
       if ((g.group[other] < 0) != static_cast<bool>(g.on_ground[k])) continue;
       const Vec2& t = g.tangent[k];
-      if (std::abs(t.x() * m.tangent.y() - t.y() * m.tangent.x()) > kParallelSine) continue;
+      if (!parallel(t, m.tangent)) continue;
       slide_loaded_points(s, m, b, t, kLoadedShare * largest, step);
     }
   }
@@ -92,7 +92,7 @@ void slide_overloaded_groups(const BlockSystem& s, ContactSet& contacts, const s
         if (k < 0 || g.group[other] == k) continue;
         if (p.spring.state == ContactState::Sliding) skip[k] = 1;  // sliding already: the passes see it
         if (face[k].isZero()) face[k] = m.tangent;
-        else if (std::abs(face[k].x() * m.tangent.y() - face[k].y() * m.tangent.x()) > kParallelSine) skip[k] = 1;
+        else if (!parallel(face[k], m.tangent)) skip[k] = 1;
         capacity[k] += coulomb_cap(m.friction, p.spring.normal_force, cohesive_strength(s.interfaces[m.interface], p));
       }
     }
@@ -180,12 +180,8 @@ int settle_sliding_groups(ImplicitStepContext& ctx, const StepParameters& relaxe
     slide_whole_faces(s, ctx.contacts, g, step);
     set_velocities(false);  // a static pass: no inertia carried in
     assemble(s, ctx.contacts, quasi, eq);
-    const Hold hold = hold_stopped_groups(s, g, velocities, eq.f, step.gravity, ctx.contacts, held);
-    if (hold == Hold::Unclear) {
-      restore();
-      return 0;
-    }
-    if (hold == Hold::Held && ++stops < static_cast<int>(s.blocks.size())) continue;
+    if (hold_stopped_groups(s, g, velocities, eq.f, ctx.contacts, held) && ++stops < static_cast<int>(s.blocks.size()))
+      continue;
     ++pass;
     if (!add_inertial_loads(s, g, velocities, eq.f)) {  // a group given a velocity: left as given
       restore();

@@ -68,7 +68,7 @@ SlidingGroups sliding_groups(const BlockSystem& s, const ContactSet& contacts, c
         Vec2& t = against[ground][k];
         if (t.isZero()) {
           t = slips;
-        } else if (std::abs(t.x() * slips.y() - t.y() * slips.x()) > kParallelSine) {
+        } else if (!parallel(t, slips)) {
           g.resolved = false;
         } else if (t.dot(slips) < 0.0) {
           both_ways[ground][k] = 1;

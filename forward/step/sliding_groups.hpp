@@ -4,10 +4,12 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <cmath>
 #include <vector>
 
 #include "forward/block_system.hpp"
 #include "forward/contact/contact_types.hpp"
+#include "forward/kinematics.hpp"
 
 namespace ddafit {
 
@@ -18,6 +20,9 @@ inline constexpr double kLoadedShare = 1e-6;
 
 // Two faces are parallel when the sine of the angle between them is under this (0.06 deg).
 inline constexpr double kParallelSine = 1e-3;
+
+// Whether unit directions a and b lie along one line (kParallelSine).
+inline bool parallel(const Vec2& a, const Vec2& b) { return std::abs(cross2(a, b)) <= kParallelSine; }
 
 struct SlidingGroups {
   std::vector<int> group;       // per block: its group, -1 if not settled or fixed
