@@ -46,6 +46,18 @@ struct Crossing {
   return c;
 }
 
+// The slider's elastic period L/c (L = sqrt(area), c = sqrt(E / rho) of the scenes' rock, E = 5 GPa).
+[[maybe_unused]] double elastic_period(const Crossing& c) {
+  return std::sqrt(c.length * c.height) / std::sqrt(5.0e9 / kRockDensity);
+}
+
+// time.step at `share` of the slider's L/c, with an output about every 0.01 s, a whole number of
+// steps apart (no step is shortened to land on one).
+[[maybe_unused]] void set_step_share(Scene& scene, const Crossing& c, double share) {
+  scene.max_step = share * elastic_period(c);
+  scene.output_interval = scene.max_step * std::max(1.0, std::round(0.01 / scene.max_step));
+}
+
 [[maybe_unused]] std::string describe(const Crossing& c, Integrator integrator) {
   std::ostringstream out;
   out << name_of(integrator) << ": alpha " << c.slope << ", phi " << c.friction << ", i " << c.roughness;

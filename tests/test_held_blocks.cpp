@@ -48,8 +48,7 @@ void expect_held_blocks_stay(Integrator integrator, const std::function<bool(con
             c.spacing = 4.0 * length, c.front_gap = 2.0 * length;  // one base block
             Scene scene = crossing_scene(c, integrator);
             scene.duration = 2.0;
-            scene.max_step = share * std::sqrt(c.length * c.height) / std::sqrt(5.0e9 / kRockDensity);
-            scene.output_interval = scene.max_step * std::max(1.0, std::round(0.01 / scene.max_step));
+            set_step_share(scene, c, share);
             const SimulationResult r = simulate(scene);
             const std::string label = describe(c, integrator) + ", margin " + std::to_string(margin) + ", step " +
                                       std::to_string(share) + " L/c";

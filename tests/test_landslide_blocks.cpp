@@ -35,16 +35,6 @@ class LandslideBlocks : public ::testing::TestWithParam<LandslideParam> {};
 
 constexpr SliderSize kSizes[] = {{10.0, 2.5}, {30.0, 8.0}, {90.0, 24.0}, {200.0, 50.0}};
 
-// The slider's elastic period L/c (L = sqrt(area), c = sqrt(E / rho) of the scenes' rock, E = 5 GPa).
-double elastic_period(const Crossing& c) { return std::sqrt(c.length * c.height) / std::sqrt(5.0e9 / kRockDensity); }
-
-// time.step at `share` of the slider's L/c, with an output about every 0.01 s, a whole number of
-// steps apart (no step is shortened to land on one).
-void set_step_share(Scene& scene, const Crossing& c, double share) {
-  scene.max_step = share * elastic_period(c);
-  scene.output_interval = scene.max_step * std::max(1.0, std::round(0.01 / scene.max_step));
-}
-
 TEST_P(LandslideBlocks, SlideFromRestAsSeedEq4SaysAtEveryStepOverTheirElasticPeriod) {
   const auto [integrator, size_index] = GetParam();
   const SliderSize size = kSizes[size_index];
