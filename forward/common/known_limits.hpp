@@ -30,6 +30,18 @@
 // stopped one until model revision 2026-12-06.9; since, it is within 7.8e-3 except where
 // friction holds the lower block by under 7 % of its face's capacity, where that block creeps
 // (7 of 16 runs more than 1 mm in 1.5 s).
+//
+// Short steps on steep faces (Known limits (o)). A free block resting at t = 0 on a face of
+// kShortStepSlope or steeper, at a time step under kShortStepShare of the elastic period L / c (L
+// the longest extent), where the face is a free block's (a stack) or the block is slender (L^2 / A
+// of kSlenderShape or more; a rectangle about L / H). Measured (2026-12-06, scripts/short_step_sweep.py,
+// 1 s from rest): a block on a free plate three times its length on faces of 25-40 deg, held or
+// sliding, at 0.017-0.067 of the plate's L / c: the implicit solver stopped on "contacts are creating
+// energy" or ran off its bound (1 % of seed Eq. 4; 1e-4 of the block's side where held) in 89 of 288
+// runs; at 0.1-0.33, 1 of 432. Lone slabs 6 and 60 m long, L / H of 15-150, on 15-35 deg at
+// 0.002-0.011 L / c: 26 of 60 sliding or held (none at 0.023 and up); at L / H 5 and 8 only held
+// ones creep (Known limits (m)). Squat single blocks hold or follow Eq. 4 at such steps
+// (tests/test_landslide_blocks.cpp, test_held_blocks.cpp). The substep solver: none off.
 #pragma once
 
 #include "forward/block_system.hpp"
@@ -43,6 +55,15 @@ inline constexpr double kTallSliderReach = 0.8;
 // The mass ratio from which a block resting on a lighter one counts as heavy on light: the
 // substep solver's own (converge_heavy.hpp, kHeavyMassRatio).
 inline constexpr double kHeavyOnLightRatio = 30.0;
+
+// The step's share of L / c under which a block resting on a steep face counts as short-stepped,
+// and the face's inclination (deg) from which it counts as steep: the lowest at which the sweeps
+// above failed (15 deg: a 60 m slab sliding at 0.1 ms, 7 % off; 5 and 10 deg: none).
+inline constexpr double kShortStepShare = 0.1;
+inline constexpr double kShortStepSlope = 15.0;
+// L^2 / A from which a lone block counts as slender: the slabs above failed from L / H = 15
+// (L^2 / A = 15.1), not at 8 (8.1).
+inline constexpr double kSlenderShape = 10.0;
 
 struct TallSlider {
   int block = -1;         // the free block with the largest r, or -1 if none slides
@@ -64,6 +85,14 @@ struct WeakJoint {
   double support = 0.0;        // the smallest friction angle of the faces the lower block rests on
 };
 
+struct ShortStep {
+  int block = -1;       // the free block with the smallest share, or -1 if none rests on a steep face
+  double share = 0.0;   // time.step / (L / c)
+  double period = 0.0;  // its L / c, s
+  double slope = 0.0;   // the inclination of the steep face it rests on, degrees
+  bool stacked = false;  // resting on a free block (else a slender block on a fixed one)
+};
+
 struct KnownLimits {
   // The free block with the largest r among those resting at t = 0 (a contact point within the
   // slop) on a fixed block's face, without cohesion or tensile strength, that is steeper than
@@ -76,6 +105,9 @@ struct KnownLimits {
   // strength, steeper than the joint's friction angle, which is below that of every face the
   // lower block rests on.
   WeakJoint weak;
+  // Of the free blocks resting at t = 0 on a face of kShortStepSlope or steeper, stacked or
+  // slender, the one whose elastic period the time step resolves most finely.
+  ShortStep short_step;
 };
 
 // Whether the scene holds a known limit's class: a tall slider (r above kTallSliderReach, a
@@ -84,6 +116,7 @@ struct KnownLimits {
 bool is_tall(const TallSlider& slider);
 bool is_heavy_on_light(const HeavyOnLight& heavy);
 bool is_weak_joint(const WeakJoint& weak);
+bool is_short_step(const ShortStep& step);
 
 // The classes from one contact detection, as a run's first step would do it.
 KnownLimits find_known_limits(const Scene& scene, const BlockSystem& s);
