@@ -23,4 +23,21 @@ inline Mat6 unit_mass_matrix(const Block& b) {
   return m;
 }
 
+// The rigid velocity (u0', v0', omega) that carries block b's linear and angular momentum:
+// (M V)_i / M_ii for i = 0, 1, 2 (M above, V the block's six rates). The translation is the
+// centroid's; the rotation is not DDA's r0' once the block strains, since M couples r0 to the
+// strain rates (M_23, M_24, M_25: a shear rate gamma' turns a long block's ends as r0' would,
+// gamma' (s_xx - s_yy) / 2 of angular momentum). An impulse on the rigid unknowns that meets the
+// velocity of this rigid motion at a point changes the kinetic energy 1/2 V^T M V by
+// P . (v_before + v_after) / 2 there, so it can only take energy out; met with r0' instead it
+// pumped a strain mode of a slab sliding at short steps until the run stopped on "contacts are
+// creating energy" (docs/theory.md, Known limits (o) until model revision 2026-12-06.14).
+inline Vec3 momentum_rigid_velocity(const Block& b) {
+  Vec3 v = b.velocity.head<3>();
+  const double turning = b.s_xx + b.s_yy;
+  if (turning > 0.0)
+    v[2] += (-b.s_xy * b.velocity[3] + b.s_xy * b.velocity[4] + 0.5 * (b.s_xx - b.s_yy) * b.velocity[5]) / turning;
+  return v;
+}
+
 }  // namespace ddafit

@@ -70,34 +70,6 @@ std::string heavy_on_light_warning(const BlockSystem& s, const HeavyOnLight& hea
   return out.str();
 }
 
-// Known limit (l): a block sliding off the free block it rests on, across a weaker joint.
-std::string weak_joint_warning(const BlockSystem& s, const WeakJoint& weak) {
-  std::ostringstream out;
-  out.precision(3);
-  out << "block '" << s.block_names[weak.upper] << "' rests on block '" << s.block_names[weak.lower]
-      << "' across a joint inclined " << weak.slope << " deg, steeper than its friction angle " << weak.joint
-      << " deg and weaker than the faces under that block (" << weak.support
-      << " deg): where friction holds the lower block by a narrow margin (under 7 % of its face's capacity) the "
-         "implicit solver lets it creep (docs/theory.md, known limits (l)); time.integrator: substep runs such "
-         "stacks right";
-  return out.str();
-}
-
-// The implicit solver's known limit (o) (docs/theory.md): a block resting on a steep face at a step
-// that resolves its elastic period finely.
-std::string short_step_warning(const BlockSystem& s, const ShortStep& step) {
-  std::ostringstream out;
-  out.precision(3);
-  out << (step.stacked ? "block '" : "slender block '") << s.block_names[step.block] << "' rests on "
-      << (step.stacked ? "a free block's face of " : "a face of ") << step.slope << " deg at a time step of "
-      << step.share << " x the elastic period L / c (" << step.period << " s): below " << kShortStepShare
-      << " x, friction at a point's cap can grow an elastic mode until the implicit solver stops on \"contacts are "
-         "creating energy\" or runs off seed Eq. 4 (docs/theory.md, known limits (o)); time.integrator: substep runs "
-         "such scenes right, or use time.step >= "
-      << kShortStepShare * step.period << " s";
-  return out.str();
-}
-
 // Integrator::Auto's rule (options.hpp, kAutoSubstepBlocks), and the reason given in
 // the summary.
 SolverReport choose_solver(const Scene& scene, const BlockSystem& s, const KnownLimits& limits) {
@@ -113,7 +85,7 @@ SolverReport choose_solver(const Scene& scene, const BlockSystem& s, const Known
   report.reason = "auto: " + std::to_string(s.free_block_count) + " free blocks, " + (many ? ">= " : "< ") +
                   std::to_string(kAutoSubstepBlocks) + " (docs/speed-accuracy.md)";
   if (many) return report;
-  // Not the implicit solver for a scene of its known limits (i), (j), (l) and (o) (the warnings above).
+  // Not the implicit solver for a scene of its known limits (i) and (j) (the warnings above).
   std::ostringstream why;
   why.precision(3);
   if (is_tall(slider)) {
@@ -123,16 +95,6 @@ SolverReport choose_solver(const Scene& scene, const BlockSystem& s, const Known
     why << ", but block '" << s.block_names[heavy.heavy] << "' rests on block '" << s.block_names[heavy.light] << "', "
         << heavy.ratio << " times lighter, which the implicit solver runs off seed Eq. 4 more often than the substep "
            "solver (docs/theory.md, known limits (j))";
-  } else if (const WeakJoint& weak = limits.weak; is_weak_joint(weak)) {
-    why << ", but block '" << s.block_names[weak.upper] << "' rests on block '" << s.block_names[weak.lower]
-        << "' across a joint steeper than its friction angle and weaker than the faces under that block, which "
-           "the implicit solver lets creep where friction holds the lower block narrowly (docs/theory.md, known "
-           "limits (l))";
-  } else if (const ShortStep& step = limits.short_step; is_short_step(step)) {
-    why << ", but " << (step.stacked ? "block '" : "slender block '") << s.block_names[step.block] << "' rests on "
-        << (step.stacked ? "a free block's face of " : "a face of ") << step.slope << " deg at a time step of "
-        << step.share << " x the elastic period, where the implicit solver's friction can grow an elastic mode "
-           "(docs/theory.md, known limits (o))";
   } else {
     return report;
   }
@@ -220,8 +182,6 @@ SimulationResult simulate(const Scene& given, const SimulationHooks& hooks) {
     if (std::string w = time_step_warning(scene, system); !w.empty()) summary.warnings.push_back(w);
     if (is_tall(limits.slider)) summary.warnings.push_back(tall_slider_warning(system, limits.slider));
     if (is_heavy_on_light(limits.heavy)) summary.warnings.push_back(heavy_on_light_warning(system, limits.heavy));
-    if (is_weak_joint(limits.weak)) summary.warnings.push_back(weak_joint_warning(system, limits.weak));
-    if (is_short_step(limits.short_step)) summary.warnings.push_back(short_step_warning(system, limits.short_step));
     run_implicit(scene, system, recorder, summary);
   }
   summary.profile.total = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();

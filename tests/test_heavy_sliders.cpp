@@ -250,10 +250,11 @@ TEST(HeavySliders, TheHeavyOnLightClassIsFoundAtTheStart) {
 
 // time.integrator: auto runs a scene of the class on the substep solver from a mass ratio of 30
 // (the implicit solver there: 29 of 38 runs from rest off; the substep solver 18 of 38, none at r = 0.5)
-// and says why. Below it, since model revision 2026-12-06.8, it does too: the slider slides off free
-// blocks across a joint weaker than what holds them (Known limits (l); below 20 times the implicit
-// solver ran 3 of 26 off, the substep solver none). The implicit solver, when asked, warns of each
-// limit; the substep solver does not. Both ways down, 1 ms of each (the choice is made at t = 0).
+// and says why. Below it the implicit solver runs (from model revision 2026-12-06.8 to .13 the
+// substep solver did, for the weaker joint between slider and row, Known limits (l), mended at .14;
+// below 20 times the implicit solver ran 3 of 26 of (j)'s class off at .05.8, the substep solver
+// none). The implicit solver, when asked, warns of the heavy pair; the substep solver does not.
+// Both ways down, 1 ms of each (the choice is made at t = 0).
 TEST(HeavySliders, AutoRunsHeavyBlocksOnMuchLighterOnesOnTheSubstepSolver) {
   for (const bool mirrored : {false, true})
     for (const double row_share : {0.1, 1.0}) {
@@ -269,18 +270,17 @@ TEST(HeavySliders, AutoRunsHeavyBlocksOnMuchLighterOnesOnTheSubstepSolver) {
         return r.summary;
       };
       const SimulationSummary automatic = run(Integrator::Auto);
-      EXPECT_EQ(automatic.solver.integrator, Integrator::Substep) << automatic.solver.reason;
-      EXPECT_EQ(automatic.solver.reason.find("known limits (j)") != std::string::npos, heavy) << automatic.solver.reason;
-      EXPECT_EQ(automatic.solver.reason.find("known limits (l)") != std::string::npos, !heavy)
+      EXPECT_EQ(automatic.solver.integrator, heavy ? Integrator::Substep : Integrator::Implicit)
+          << automatic.solver.reason;
+      EXPECT_EQ(automatic.solver.reason.find("known limits (j)") != std::string::npos, heavy)
           << automatic.solver.reason;
       const SimulationSummary implicit = run(Integrator::Implicit);
-      ASSERT_EQ(implicit.warnings.size(), heavy ? 2u : 1u);
+      ASSERT_EQ(implicit.warnings.size(), heavy ? 1u : 0u);
       if (heavy) {
         EXPECT_NE(implicit.warnings[0].find("block 'slider' rests on block 'row_"), std::string::npos)
             << implicit.warnings[0];
         EXPECT_NE(implicit.warnings[0].find("known limits (j)"), std::string::npos) << implicit.warnings[0];
       }
-      EXPECT_NE(implicit.warnings.back().find("known limits (l)"), std::string::npos) << implicit.warnings.back();
       EXPECT_TRUE(run(Integrator::Substep).warnings.empty());
     }
 }

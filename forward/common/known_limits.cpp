@@ -67,60 +67,11 @@ void take_heavy(const BlockSystem& s, const ContactManifold& m, const Vec2& up, 
   if (ratio > out.ratio) out = {upper, lower, ratio};
 }
 
-// The upper block of m resting on the lower one, both free, as a weak-joint candidate: the
-// joint steeper than its friction angle and weaker than `support[lower]`.
-void take_weak_joint(const BlockSystem& s, const ContactManifold& m, const Vec2& up,
-                     const std::vector<double>& support, WeakJoint& out) {
-  int upper = -1, lower = -1;
-  if (out.upper >= 0 || !resting_pair(m, up, upper, lower)) return;
-  const Interface& joint = s.interfaces[m.interface];
-  if (joint.cohesion > 0.0 || joint.tensile_strength > 0.0) return;
-  const double slope = std::acos(std::min(1.0, std::abs(m.normal.dot(up)))) * 180.0 / M_PI;
-  if (slope > joint.friction_angle && joint.friction_angle < support[lower])
-    out = {upper, lower, slope, joint.friction_angle, support[lower]};
-}
-
-// Block b's longest extent (two vertices apart), m.
-double longest_extent(const BlockSystem& s, int b) {
-  const Block& block = s.blocks[b];
-  double length = 0.0;
-  for (int i = 0; i < block.vertex_count; ++i)
-    for (int j = i + 1; j < block.vertex_count; ++j)
-      length = std::max(length, (s.vertices[block.first_vertex + i] - s.vertices[block.first_vertex + j]).norm());
-  return length;
-}
-
-// The upper block of m, free, resting on a face of kShortStepSlope or steeper, as a short-step
-// candidate where that face is a free block's (a stack) or the upper block is slender (L^2 / A of
-// kSlenderShape or more): the step over the elastic period L / c, L the longest extent of the
-// free blocks of the pair.
-void take_short_step(const Scene& scene, const BlockSystem& s, const ContactManifold& m, const Vec2& up,
-                     ShortStep& out) {
-  int upper = -1, lower = -1;
-  if (!resting_pair(m, up, upper, lower) || s.blocks[upper].fixed) return;
-  const double slope = std::acos(std::min(1.0, std::abs(m.normal.dot(up)))) * 180.0 / M_PI;
-  if (slope < kShortStepSlope) return;
-  const bool stacked = !s.blocks[lower].fixed;
-  double length = longest_extent(s, upper);
-  const bool slender = length * length >= kSlenderShape * s.blocks[upper].area;
-  if (!stacked && !slender) return;
-  if (stacked) length = std::max(length, longest_extent(s, lower));
-  const Material& material = scene.materials[s.blocks[upper].material];
-  const double period = length / std::sqrt(material.young_modulus / material.density);
-  if (!(period > 0.0)) return;
-  const double share = scene.max_step / period;
-  if (out.block < 0 || share < out.share) out = {upper, share, period, slope, stacked};
-}
-
 }  // namespace
 
 bool is_tall(const TallSlider& slider) { return slider.block >= 0 && slider.reach > kTallSliderReach * (1.0 + 1e-9); }
 
 bool is_heavy_on_light(const HeavyOnLight& heavy) { return heavy.heavy >= 0 && heavy.ratio >= kHeavyOnLightRatio; }
-
-bool is_weak_joint(const WeakJoint& weak) { return weak.upper >= 0; }
-
-bool is_short_step(const ShortStep& step) { return step.block >= 0 && step.share < kShortStepShare; }
 
 KnownLimits find_known_limits(const Scene& scene, const BlockSystem& s) {
   KnownLimits out;
@@ -140,22 +91,13 @@ KnownLimits find_known_limits(const Scene& scene, const BlockSystem& s) {
       if (m.points[q].separation <= detection.settings.linear_slop) return true;
     return false;
   };
-  // Per block: the smallest friction angle of the faces it rests on (weak joints).
-  std::vector<double> support(s.blocks.size(), std::numeric_limits<double>::infinity());
-  for (const ContactManifold& m : contacts.manifolds) {
-    int upper = -1, lower = -1;
-    if (!touches(m) || !resting_pair(m, up, upper, lower)) continue;
-    support[upper] = std::min(support[upper], s.interfaces[m.interface].friction_angle);
-  }
   for (const ContactManifold& m : contacts.manifolds) {
     if (!touches(m)) continue;
-    take_short_step(scene, s, m, up, out.short_step);
     const bool fa = s.blocks[m.block_a].fixed, fb = s.blocks[m.block_b].fixed;
     if (fa != fb) {
       take_slider(s, m, up, out.slider);
     } else if (!fa) {
       take_heavy(s, m, up, out.heavy);
-      take_weak_joint(s, m, up, support, out.weak);
     }
   }
   return out;

@@ -22,26 +22,8 @@
 // substep solver 18 of 38 (tall sliders; none at r = 0.5), in under a second. 20-30 times:
 // implicit 5 of 8, substep 4 of 8; below 20 times: implicit 3 of 26 (1.2-1.3 %), substep none.
 //
-// Stacks with a weaker joint (Known limits (l)). A free block resting on a free block across a
-// joint steeper than the joint's friction angle and weaker than every face the lower block rests
-// on: it slides off the lower block from rest. Measured on tests/test_landslide_blocks.cpp's
-// classes (84 stacks of 5-200 m blocks, nine faces, 0.02-0.5 L/c): the substep solver within
-// 5.8e-3 of the closed form. The implicit solver ran 8 of the first 12 over their bound and
-// stopped one until model revision 2026-12-06.9; since, it is within 7.8e-3 except where
-// friction holds the lower block by under 7 % of its face's capacity, where that block creeps
-// (7 of 16 runs more than 1 mm in 1.5 s).
-//
-// Short steps on steep faces (Known limits (o)). A free block resting at t = 0 on a face of
-// kShortStepSlope or steeper, at a time step under kShortStepShare of the elastic period L / c (L
-// the longest extent), where the face is a free block's (a stack) or the block is slender (L^2 / A
-// of kSlenderShape or more; a rectangle about L / H). Measured (2026-12-06, scripts/short_step_sweep.py,
-// 1 s from rest): a block on a free plate three times its length on faces of 25-40 deg, held or
-// sliding, at 0.017-0.067 of the plate's L / c: the implicit solver stopped on "contacts are creating
-// energy" or ran off its bound (1 % of seed Eq. 4; 1e-4 of the block's side where held) in 89 of 288
-// runs; at 0.1-0.33, 1 of 432. Lone slabs 6 and 60 m long, L / H of 15-150, on 15-35 deg at
-// 0.002-0.011 L / c: 26 of 60 sliding or held (none at 0.023 and up); at L / H 5 and 8 only held
-// ones creep (Known limits (m)). Squat single blocks hold or follow Eq. 4 at such steps
-// (tests/test_landslide_blocks.cpp, test_held_blocks.cpp). The substep solver: none off.
+// (Stacks with a weaker joint, Known limits (l), were a third class from model revision
+// 2026-12-06.8 to .13: a lower block held narrowly crept on the implicit solver until .14.)
 #pragma once
 
 #include "forward/block_system.hpp"
@@ -56,15 +38,6 @@ inline constexpr double kTallSliderReach = 0.8;
 // substep solver's own (converge_heavy.hpp, kHeavyMassRatio).
 inline constexpr double kHeavyOnLightRatio = 30.0;
 
-// The step's share of L / c under which a block resting on a steep face counts as short-stepped,
-// and the face's inclination (deg) from which it counts as steep: the lowest at which the sweeps
-// above failed (15 deg: a 60 m slab sliding at 0.1 ms, 7 % off; 5 and 10 deg: none).
-inline constexpr double kShortStepShare = 0.1;
-inline constexpr double kShortStepSlope = 15.0;
-// L^2 / A from which a lone block counts as slender: the slabs above failed from L / H = 15
-// (L^2 / A = 15.1), not at 8 (8.1).
-inline constexpr double kSlenderShape = 10.0;
-
 struct TallSlider {
   int block = -1;         // the free block with the largest r, or -1 if none slides
   double reach = 0.0;     // its r = tan(phi_p) H / L
@@ -78,21 +51,6 @@ struct HeavyOnLight {
   double ratio = 0.0;          // mass of heavy / mass of light
 };
 
-struct WeakJoint {
-  int upper = -1, lower = -1;  // the first such pair found, or -1 if none
-  double slope = 0.0;          // the joint's inclination, degrees
-  double joint = 0.0;          // its friction angle, degrees
-  double support = 0.0;        // the smallest friction angle of the faces the lower block rests on
-};
-
-struct ShortStep {
-  int block = -1;       // the free block with the smallest share, or -1 if none rests on a steep face
-  double share = 0.0;   // time.step / (L / c)
-  double period = 0.0;  // its L / c, s
-  double slope = 0.0;   // the inclination of the steep face it rests on, degrees
-  bool stacked = false;  // resting on a free block (else a slender block on a fixed one)
-};
-
 struct KnownLimits {
   // The free block with the largest r among those resting at t = 0 (a contact point within the
   // slop) on a fixed block's face, without cohesion or tensile strength, that is steeper than
@@ -101,13 +59,6 @@ struct KnownLimits {
   // Of the free blocks resting at t = 0 on a free block (a contact point within the slop, its
   // normal more than a tenth against gravity), the pair with the largest mass ratio.
   HeavyOnLight heavy;
-  // A free block resting at t = 0 on a free block across a joint without cohesion or tensile
-  // strength, steeper than the joint's friction angle, which is below that of every face the
-  // lower block rests on.
-  WeakJoint weak;
-  // Of the free blocks resting at t = 0 on a face of kShortStepSlope or steeper, stacked or
-  // slender, the one whose elastic period the time step resolves most finely.
-  ShortStep short_step;
 };
 
 // Whether the scene holds a known limit's class: a tall slider (r above kTallSliderReach, a
@@ -115,8 +66,6 @@ struct KnownLimits {
 // block heavy on a light one (kHeavyOnLightRatio).
 bool is_tall(const TallSlider& slider);
 bool is_heavy_on_light(const HeavyOnLight& heavy);
-bool is_weak_joint(const WeakJoint& weak);
-bool is_short_step(const ShortStep& step);
 
 // The classes from one contact detection, as a run's first step would do it.
 KnownLimits find_known_limits(const Scene& scene, const BlockSystem& s);

@@ -8,6 +8,7 @@
 
 #include "forward/block_groups.hpp"
 #include "forward/contact/contact_law.hpp"
+#include "forward/mass_matrix.hpp"
 
 namespace ddafit {
 namespace {
@@ -69,9 +70,10 @@ int resolve_impacts(ImplicitStepContext& ctx, double dt, std::vector<char>& stru
     const Block& k = s.blocks[b];
     return k.fixed ? 0.0 : 1.0 / (s.density[k.material] * (k.s_xx + k.s_yy));
   };
-  // Velocity of block b's material point at r from its centroid (rigid part of T V).
+  // Velocity at r from block b's centroid of the rigid motion that carries its momentum
+  // (mass_matrix.hpp): the impulses below change only that motion.
   const auto velocity = [&](int b, const Vec2& r) -> Vec2 {
-    return velocity_at(s.blocks[b].velocity.head<3>(), r);
+    return velocity_at(momentum_rigid_velocity(s.blocks[b]), r);
   };
   const auto relative = [&](const ContactManifold& m, const ContactPoint& p) -> Vec2 {
     return velocity(m.block_b, p.rb) - velocity(m.block_a, p.ra);
