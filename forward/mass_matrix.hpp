@@ -31,7 +31,8 @@ inline Mat6 unit_mass_matrix(const Block& b) {
 // velocity of this rigid motion at a point changes the kinetic energy 1/2 V^T M V by
 // P . (v_before + v_after) / 2 there, so it can only take energy out; met with r0' instead it
 // pumped a strain mode of a slab sliding at short steps until the run stopped on "contacts are
-// creating energy" (docs/theory.md, Known limits (o) until model revision 2026-12-06.14).
+// creating energy" (docs/theory.md §7a, "The rigid motion an impulse meets"; until model
+// revision 2026-12-06.14, forward/step/resolve_impacts.cpp).
 inline Vec3 momentum_rigid_velocity(const Block& b) {
   Vec3 v = b.velocity.head<3>();
   const double turning = b.s_xx + b.s_yy;
