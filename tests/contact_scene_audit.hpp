@@ -52,13 +52,7 @@ constexpr double kEnergyFloorHeight = 1e-5;  // m
 // stress, more in plane strain: the lower floor).
 [[maybe_unused]] double elastic_floor_height(const BlockSystem& s, int b, const Vec2& gravity) {
   const Block& block = s.blocks[b];
-  const Vec2 down = gravity.normalized();
-  double lo = std::numeric_limits<double>::infinity(), hi = -lo;
-  for (int k = 0; k < block.vertex_count; ++k) {
-    const double h = s.vertices[block.first_vertex + k].dot(down);
-    lo = std::min(lo, h), hi = std::max(hi, h);
-  }
-  const double height = hi - lo, stiffness = s.elastic[block.material](0, 0);
+  const double height = block_length_along(s, b, gravity.normalized()), stiffness = s.elastic[block.material](0, 0);
   return std::max(kEnergyFloorHeight, s.density[block.material] * gravity.norm() * height * height / (8.0 * stiffness));
 }
 

@@ -232,5 +232,53 @@ constexpr double kDisplacementTolerance = 0.01;
   return error;
 }
 
+// Blocks that friction holds on a face, or that slide down it as one body: the friction angle
+// (deg) whose tangent is tan(slope) / ratio (ratio < 1: held with 1 - ratio of the face's
+// capacity to spare; ratio > 1: sliding).
+[[maybe_unused]] double friction_for_ratio(double slope, double ratio) {
+  return std::atan(std::tan(slope * kDegree) / ratio) / kDegree;
+}
+
+// A run's error on a face of `slope` deg whose friction is tan(slope) / ratio, at its first measure
+// point: sliding, |s - s4| / s4 at the last output, s4 = g (sin a - cos a tan phi) t^2 / 2 (seed
+// Eq. 4); held, its largest displacement over the run over `length`.
+[[maybe_unused]] double held_or_sliding_error(const SimulationResult& r, double slope, double ratio, double length) {
+  const double a = slope * kDegree;
+  const double along = 9.81 * (std::sin(a) - std::cos(a) * std::tan(a) / ratio);
+  double largest = 0.0, last = 0.0, time = 0.0;
+  for (const HistoryRow& row : r.history) {
+    if (row.point != 0) continue;
+    largest = std::max(largest, row.displacement.norm());
+    last = row.displacement.norm(), time = row.time;
+  }
+  if (along <= 0.0) return largest / length;
+  const double expected = 0.5 * along * time * time;
+  return std::abs(last - expected) / expected;
+}
+
+// A square block of side L resting on a free plate three times its length and `thickness` L
+// thick, on a fixed face of `slope` deg that runs 6 L (room for a plate sliding for a second):
+// the face's friction tan(slope) / face_ratio, the joint's between block and plate
+// tan(slope) / joint_ratio; a time step of `share` of the block's L / c. Measures the block's centre.
+struct PlateOnFace {
+  double side, thickness, slope, face_ratio, joint_ratio, share;
+};
+
+[[maybe_unused]] Scene block_on_free_plate(const PlateOnFace& p, Integrator integrator, double output_interval) {
+  Scene s = base_scene(1.0, p.share * p.side / std::sqrt(5.0e9 / kRockDensity), output_interval, integrator);
+  const int joint = add_interface(s, "joint", friction_for_ratio(p.slope, p.joint_ratio));
+  const int face = add_interface(s, "face", friction_for_ratio(p.slope, p.face_ratio));
+  s.default_interface = joint;
+  s.contact_rules.push_back({"base", "plate", face});
+  const Slope slope(p.slope);
+  const double side = p.side, t = p.thickness * side;
+  s.blocks.push_back(
+      block("base", {slope.at(0, 0), slope.at(0, -side), slope.at(6 * side, -side), slope.at(6 * side, 0)}, true));
+  s.blocks.push_back(block("plate", box(slope.at(0.5 * side, 0), slope.along, slope.up, 3 * side, t), false));
+  s.blocks.push_back(block("block", box(slope.at(side, t), slope.along, slope.up, side, side), false));
+  s.measure.push_back({"centre", slope.at(1.5 * side, t + 0.5 * side)});
+  return s;
+}
+
 }  // namespace
 }  // namespace ddafit
