@@ -79,6 +79,11 @@ const std::vector<std::array<int, 2>>& pair_blocks(const std::vector<ContactMani
 std::vector<int> manifolds_of_blocks(const std::vector<std::array<int, 2>>& pairs, const std::vector<char>& marked,
                                      const std::vector<BlockMass>& masses);
 
+// The manifolds flagged deep (SweepState::deep) and every other manifold of their moving blocks,
+// in order; `involved` flags those blocks. converge_deep's and correct_positions' list.
+std::vector<int> deep_neighbourhood(const std::vector<ContactManifold>& manifolds, SweepState& st,
+                                    std::vector<char>& involved);
+
 // st.of_block, built from `manifolds` if this step has not built it yet.
 const BlockManifolds& block_manifolds(const std::vector<ContactManifold>& manifolds, SweepState& st);
 
