@@ -249,6 +249,69 @@ TEST(Stability, DISABLED_AColumnOfTenFiveCentimetreCubesStandsAtEveryStepSubstep
   }
 }
 
+// Tall columns: 10, 20 and 30 square blocks of 0.5, 1, 2, 5 and 10 m on a fixed ground, 4 s,
+// at 2, 5, 10 and 20 ms (the substep solver with 3 and 4 substeps). A run either completes with
+// the column standing, its top within 1 % of a block sideways, or stops with a diagnosis naming
+// the step. Returns the runs that do neither, and the largest sideways move of a completed run.
+struct TallColumns {
+  int runs = 0, off = 0;
+  double worst = 0.0;  // of a block
+  std::string worst_label;
+};
+TallColumns sweep_tall_columns(Integrator integrator) {
+  TallColumns c;
+  for (double size : {0.5, 1.0, 2.0, 5.0, 10.0})
+    for (int count : {10, 20, 30})
+      for (double step : {0.002, 0.005, 0.01, 0.02})
+        for (int substeps : {3, 4}) {
+          if (integrator == Integrator::Implicit && substeps != 3) continue;
+          Scene s = column_scene(size, count);
+          s.duration = 4.0, s.max_step = step, s.output_interval = 0.05;
+          s.options.substeps = substeps;
+          s.options.integrator = integrator;
+          const SimulationResult r = simulate(s);
+          const std::string label = std::to_string(count) + " x " + std::to_string(size) + " m at " +
+                                    std::to_string(step) + " s x " + std::to_string(substeps);
+          ++c.runs;
+          if (r.summary.status != RunStatus::Completed) {
+            if (r.summary.message.find("time.step") == std::string::npos) ++c.off;
+            continue;
+          }
+          const double sideways = r.summary.points[0].max_lateral_displacement / size;
+          if (sideways >= 0.01) ++c.off;
+          if (sideways > c.worst) c.worst = sideways, c.worst_label = label;
+        }
+  return c;
+}
+
+// The implicit solver, which solves a step's contacts together, holds every tall column: 60 runs,
+// each completed, the top at most 2.5e-5 of a block sideways (measured 2026-12-06, revision
+// 2026-12-06.14: 30 x 5 m at 10 ms).
+TEST(Stability, TallColumnsStandImplicit) {
+  const TallColumns c = sweep_tall_columns(Integrator::Implicit);
+  EXPECT_EQ(c.runs, 60);
+  EXPECT_EQ(c.off, 0);
+  EXPECT_LT(c.worst, 1e-4) << c.worst_label;
+  std::cout << "[measured] tall columns, implicit: top at most " << c.worst << " of a block sideways (" << c.worst_label
+            << ")\n";
+}
+
+// KNOWN DEFECT (found 2026-12-06 by a black-box sweep, revision 2026-12-06.14; docs/theory.md §13,
+// "Tall columns"): the substep solver lets 44 of these 120 columns sway: 30 complete with the top
+// more than 1 % of a block sideways (up to 106 % at 30 x 0.5 m, 20 ms x 3), 14 sway until the
+// energy audit stops them with its diagnosis. Of the 40 columns of ten, 39 stand (one stops). Traced: each manifold's
+// passes take its two points in turn and stop at 1 % of its impulse, so the corners of a joint
+// carry unequal shares and every block turns the same way; two sweeps a substep do not converge
+// a column of twenty and its sway grows. Solving the manifolds of small islands at rest to 1e-5
+// with 12 more sweeps left 6 of 120 off, but changed what a heavy block landing on a row of
+// resting cubes does (a cube moved 17 mm, bound 5 mm) and how a row struck against a wall
+// rebounds; not kept.
+TEST(Stability, DISABLED_TallColumnsStandOrStopWithADiagnosisSubstep) {
+  const TallColumns c = sweep_tall_columns(Integrator::Substep);
+  EXPECT_EQ(c.runs, 120);
+  EXPECT_EQ(c.off, 0) << "worst " << c.worst << " of a block (" << c.worst_label << ")";
+}
+
 // A block dropped flat onto a fixed floor stays down (DDA's contacts are perfectly plastic): blocks
 // of 0.1, 1 and 10 m dropped from 0.1, 1 and 5 times their size, at 1, 5, 10 and 20 ms (three
 // substeps), both solvers, 72 runs. After the landing its base never rises more than 1e-3 of its
