@@ -68,7 +68,8 @@ void correct_positions(const std::vector<ContactManifold>& manifolds, const Posi
         if (excess <= 0.0) continue;
         const double correction = std::min(settings.fraction * excess, settings.max_correction);
         const double ca = cross2(p.ra, m.normal), cb = cross2(p.rb, m.normal);
-        const double k_n = ma.inverse_mass + mb.inverse_mass + ma.inverse_inertia * ca * ca + mb.inverse_inertia * cb * cb;
+        const double k_n =
+            ma.inverse_mass + mb.inverse_mass + ma.inverse_inertia * ca * ca + mb.inverse_inertia * cb * cb;
         if (k_n > 0.0) apply_impulse(da, db, ma, mb, p, (correction / k_n) * m.normal), moved = true;
       }
       if (moved) corrected = true, bring_in(m.block_a), bring_in(m.block_b);
