@@ -87,19 +87,17 @@ struct PassChange {
 };
 
 // Passes over N manifolds at once, point q of each in turn (point(i, q) updates point q of
-// manifold i), at most passes[i] for manifold i; a manifold stops once no change of a pass
-// exceeds tolerance[i] times the largest scale of that pass (control.contact_passes).
+// manifold i), at most `passes`; a manifold stops once no change of a pass exceeds
+// `tolerance` times the largest scale of that pass (control.contact_passes).
 template <int N, class Point>
-void converge_passes(ContactManifold* const* m, const int* passes, const double* tolerance, Point&& point) {
+void converge_passes(ContactManifold* const* m, int passes, double tolerance, Point&& point) {
   bool open[N];
-  int most_passes = 0;
-  for (int i = 0; i < N; ++i) open[i] = true, most_passes = std::max(most_passes, passes[i]);
-  for (int pass = 0; pass < most_passes; ++pass) {
+  for (int i = 0; i < N; ++i) open[i] = true;
+  for (int pass = 0; pass < passes; ++pass) {
     int count[N];
     int most = 0;
     PassChange largest[N];
     for (int i = 0; i < N; ++i) {
-      if (pass >= passes[i]) open[i] = false;
       count[i] = open[i] ? m[i]->point_count : 0;
       most = std::max(most, count[i]);
     }
@@ -112,17 +110,8 @@ void converge_passes(ContactManifold* const* m, const int* passes, const double*
         largest[i].scale = std::max(largest[i].scale, r.scale);
       }
     for (int i = 0; i < N; ++i)
-      if (open[i] && largest[i].change <= tolerance[i] * largest[i].scale) open[i] = false;
+      if (open[i] && largest[i].change <= tolerance * largest[i].scale) open[i] = false;
   }
-}
-
-// The same with one limit and one tolerance for all N.
-template <int N, class Point>
-void converge_passes(ContactManifold* const* m, int passes, double tolerance, Point&& point) {
-  int limit[N];
-  double share[N];
-  for (int i = 0; i < N; ++i) limit[i] = passes, share[i] = tolerance;
-  converge_passes<N>(m, limit, share, point);
 }
 
 }  // namespace ddafit
