@@ -1,5 +1,6 @@
 #include "forward/common/energy_check.hpp"
 
+#include "forward/mass_matrix.hpp"
 #include "forward/water/hydrostatic.hpp"
 
 #include <algorithm>
@@ -16,8 +17,8 @@ double block_kinetic_energy(const BlockSystem& s, int b, const Vec6& v) {
 
 double kinetic_energy(const BlockSystem& s) {
   double energy = 0.0;
-  for (int b = 0; b < static_cast<int>(s.blocks.size()); ++b)
-    if (!s.blocks[b].fixed) energy += block_kinetic_energy(s, b, s.blocks[b].velocity);
+  for (const Block& b : s.blocks)
+    if (!b.fixed) energy += 0.5 * s.density[b.material] * b.velocity.dot(unit_mass_matrix(b) * b.velocity);
   return energy;
 }
 
