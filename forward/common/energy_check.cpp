@@ -11,14 +11,13 @@ namespace ddafit {
 
 double block_kinetic_energy(const BlockSystem& s, int b, const Vec6& v) {
   const Block& block = s.blocks[b];
-  const double inertia = s.density[block.material] * (block.s_xx + block.s_yy);
-  return 0.5 * s.mass(b) * (v[0] * v[0] + v[1] * v[1]) + 0.5 * inertia * v[2] * v[2];
+  return 0.5 * s.density[block.material] * v.dot(unit_mass_matrix(block) * v);
 }
 
 double kinetic_energy(const BlockSystem& s) {
   double energy = 0.0;
-  for (const Block& b : s.blocks)
-    if (!b.fixed) energy += 0.5 * s.density[b.material] * b.velocity.dot(unit_mass_matrix(b) * b.velocity);
+  for (int b = 0; b < static_cast<int>(s.blocks.size()); ++b)
+    if (!s.blocks[b].fixed) energy += block_kinetic_energy(s, b, s.blocks[b].velocity);
   return energy;
 }
 

@@ -51,9 +51,8 @@ struct EnergyAudit {
 // w = -49.75 rad/s and gamma' = 99.5 /s, and 1/2 I w^2 alone read as 2784 J/m against 2650 J/m
 // of gravity's work (tests/test_thin_plate.cpp).
 double kinetic_energy(const BlockSystem& system);
-// One free block's kinetic energy at rates v (vx, vy, omega, ...), J/m: 1/2 m |v|^2 +
-// 1/2 rho (S_xx + S_yy) omega^2; strain rates are left out (the step judge's rigid measure,
-// forward/step/judge_step.cpp; kinetic_energy counts them).
+// One free block's kinetic energy at rates v (vx, vy, omega, and the strain rates), J/m:
+// 1/2 rho v^T M v (above).
 double block_kinetic_energy(const BlockSystem& system, int block, const Vec6& v);
 // The audit's floor (EnergyAudit::floor): 1e-4 x sum m |g| x half the model size.
 double energy_floor(const BlockSystem& system, const Vec2& gravity);
