@@ -48,6 +48,10 @@ TEST(CasesMatchCode, RockingBlock) {
   EXPECT_NO_FATAL_FAILURE(expect_same_scene(io::read_scene(kDir + "rocking.yaml"), verification::rocking_block_scene()));
 }
 
+TEST(CasesMatchCode, Arch) {
+  EXPECT_NO_FATAL_FAILURE(expect_same_scene(io::read_scene(kDir + "arch.yaml"), verification::arch_scene(0.15)));
+}
+
 TEST(CasesMatchCode, Collision) {
   EXPECT_NO_FATAL_FAILURE(expect_same_scene(io::read_scene(kDir + "collision.yaml"), verification::collision_scene()));
 }

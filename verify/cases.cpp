@@ -125,6 +125,26 @@ Scene rocking_column_scene(const RockingSetup& setup) {
 
 Scene rocking_block_scene() { return rocking_column_scene(RockingSetup{}); }
 
+Scene arch_scene(double thickness_ratio) {
+  constexpr int kVoussoirs = 15;
+  Scene s = base_scene(2.0, 1.0e-3, 0.05);
+  Interface face;
+  face.name = "joint";
+  face.friction_angle = 40.0;
+  s.interfaces.push_back(face);
+  s.default_interface = 0;
+  const double inner = 1.0 - 0.5 * thickness_ratio, outer = 1.0 + 0.5 * thickness_ratio;
+  s.blocks.push_back(block("floor", box({-3.0, -1.0}, {1, 0}, {0, 1}, 6.0, 1.0), true));
+  for (int k = 0; k < kVoussoirs; ++k) {  // from the right springing to the left, counter-clockwise
+    const double a0 = M_PI * k / kVoussoirs, a1 = M_PI * (k + 1) / kVoussoirs;
+    const Vec2 d0(std::cos(a0), std::sin(a0)), d1(std::cos(a1), std::sin(a1));
+    s.blocks.push_back(
+        block(std::string("voussoir_").append(std::to_string(k)), {inner * d0, outer * d0, outer * d1, inner * d1}, false));
+  }
+  s.measure.push_back({"crown", {0.0, 1.0}});
+  return s;
+}
+
 Scene brick_wall_scene(int courses, int per_course, double duration) {
   Scene s = base_scene(duration, 1.0e-3, 0.01);
   Interface face;

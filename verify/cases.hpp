@@ -45,6 +45,12 @@ Scene rocking_column_scene(const RockingSetup& setup);
 // The verification case: RockingSetup's defaults, a 1 x 4.5 m block tilted alpha / 2.
 Scene rocking_block_scene();
 
+// Heyman's masonry arch (Int. J. Mech. Sci. 11, 1969): a semicircular arch of 15 voussoirs of
+// mean radius 1 m and thickness `thickness_ratio` m on a fixed floor, friction 40 deg, no
+// cohesion, 2 s at 1 ms. It stands under its own weight only if thickness_ratio >= 0.1075.
+// A material point at the crown, on the mean radius.
+Scene arch_scene(double thickness_ratio);
+
 // A running-bond wall of `courses` x `per_course` bricks (1 m x 0.5 m) on a fixed floor:
 // the benchmark's many-contact scene (100 blocks for 10 x 10).
 Scene brick_wall_scene(int courses, int per_course, double duration);

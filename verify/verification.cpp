@@ -266,6 +266,30 @@ std::vector<CheckRow> rocking_rows(Integrator integrator) {
                     "a discretised impact loses a little more (Yagoda-Biran & Hatzor 2010 found the same of DDA)")};
 }
 
+// Heyman (1969): a semicircular arch stands only if t >= 0.1075 R. Above the limit (t/R 0.15)
+// the crown may move by the joints' elastic closure only; below it (t/R 0.08) four hinges form
+// and the crown falls most of R.
+std::vector<CheckRow> arch_rows(Integrator integrator) {
+  std::vector<CheckRow> rows;
+  for (const double ratio : {0.15, 0.08}) {
+    const SimulationResult r = simulate(with_solver(arch_scene(ratio), integrator));
+    const bool stands = ratio > 0.1075;
+    const std::string name = std::string("arch 15 voussoirs t/R=").append(stands ? "0.15" : "0.08");
+    if (r.summary.status != RunStatus::Completed) {
+      rows.push_back(row(name, "run failed: " + r.summary.message, 0, NAN, NAN, 1e-3, ""));
+      continue;
+    }
+    const double moved = r.summary.points[0].max_total_displacement;  // R = 1 m
+    if (stands)
+      rows.push_back(bound_row(name, "crown movement in 2 s (m); error = movement, absolute", "<= 0.001", moved, moved,
+                               1e-3, "above Heyman's minimum thickness 0.1075 R the arch stands"));
+    else
+      rows.push_back(bound_row(name, "crown fall in 2 s (m); error = shortfall below R/2", ">= 0.5", moved,
+                               std::max(0.0, 0.5 - moved), 0.0, "below Heyman's minimum thickness four hinges form"));
+  }
+  return rows;
+}
+
 }  // namespace
 
 std::vector<StabilityPoint> incline_stability_map(const std::vector<double>& penalty_factors,
@@ -355,6 +379,7 @@ std::vector<Check> all_checks(Integrator integrator) {
   checks.push_back({"stack" + suffix, [=] { return stack_rows(integrator); }});
   checks.push_back({"collision" + suffix, [=] { return collision_rows(integrator); }});
   checks.push_back({"rocking_block" + suffix, [=] { return rocking_rows(integrator); }});
+  checks.push_back({"arch" + suffix, [=] { return arch_rows(integrator); }});
   return checks;
 }
 
