@@ -50,8 +50,8 @@ double crown_moved(const Arch& a, Integrator integrator, int substeps, bool stri
   for (int k = 0; k < a.voussoirs; ++k) {
     const double a0 = M_PI * (a.voussoirs - k) / a.voussoirs, a1 = M_PI * (a.voussoirs - k - 1) / a.voussoirs;
     const Vec2 d0(std::cos(a0), std::sin(a0)), d1(std::cos(a1), std::sin(a1));
-    s.blocks.push_back(block(std::string("v").append(std::to_string(k)), {inner * d1, outer * d1, outer * d0, inner * d0},
-                             false));
+    const std::string name = std::string("v").append(std::to_string(k));
+    s.blocks.push_back(block(name, {inner * d1, outer * d1, outer * d0, inner * d0}, false));
   }
   s.measure.push_back({"crown", {0.0, R}});
   RunAudit audit;

@@ -4,11 +4,12 @@
 // rotation move its faces alike (the mass matrix couples r0 and gamma by (S_xx - S_yy) / 2).
 // Found 2026-12-06 by black-box sweeps through `ddafit simulate`: the implicit solver stopped
 // 3 of 32 drops like these (plates of 1, 5, 10 and 25 cm; all three on the 1 cm plate) at the
-// impact with "contacts are creating energy", and 8 of 24 drops of a stack onto 1-20 mm plates. The plate squeezed between the stack and the
-// ground rang in its shear mode (at 0.14 s: rotation rate -49.75 rad/s, shear rate 99.5 /s,
-// faces moving at centimetres a second), and the audit counted the rotation alone, 1/2 I w^2 =
-// 2784 J/m against 2650 J/m of gravity's work. The audit now counts 1/2 V^T M V with the
-// block's whole mass matrix (forward/common/energy_check.cpp, model revision 2026-12-06.17).
+// impact with "contacts are creating energy", and 8 of 24 drops of a stack onto 1-20 mm plates.
+// The plate squeezed between the stack and the ground rang in its shear mode (at 0.14 s:
+// rotation rate -49.75 rad/s, shear rate 99.5 /s, faces moving at centimetres a second), and the
+// audit counted the rotation alone, 1/2 I w^2 = 2784 J/m against 2650 J/m of gravity's work.
+// The audit now counts 1/2 V^T M V with the block's whole mass matrix
+// (forward/common/energy_check.cpp, model revision 2026-12-06.17).
 //
 // Tolerances and why:
 //   - the checks every contact scene shares (contact_scene_audit.hpp): completed, the energy
@@ -47,8 +48,8 @@ void expect_landing_on_the_plate(const PlateDrop& d, Integrator integrator, doub
   RunAudit audit;
   const SimulationResult r = simulate(s, audit_hooks(audit, s.gravity));
   char label[160];
-  std::snprintf(label, sizeof label, "%s: %d block(s) dropped %g m onto a %g m plate, %g ms", name_of(integrator).c_str(),
-                d.stacked, d.drop, d.thickness, 1e3 * d.step);
+  std::snprintf(label, sizeof label, "%s: %d block(s) dropped %g m onto a %g m plate, %g ms",
+                name_of(integrator).c_str(), d.stacked, d.drop, d.thickness, 1e3 * d.step);
   expect_contact_physics(r, audit, integrator, label);
   if (r.summary.status != RunStatus::Completed || !landing) return;
   const Vec2 plate = r.history.end()[-2].displacement, top = r.history.back().displacement;

@@ -138,8 +138,8 @@ Scene arch_scene(double thickness_ratio) {
   for (int k = 0; k < kVoussoirs; ++k) {  // from the right springing to the left, counter-clockwise
     const double a0 = M_PI * k / kVoussoirs, a1 = M_PI * (k + 1) / kVoussoirs;
     const Vec2 d0(std::cos(a0), std::sin(a0)), d1(std::cos(a1), std::sin(a1));
-    s.blocks.push_back(
-        block(std::string("voussoir_").append(std::to_string(k)), {inner * d0, outer * d0, outer * d1, inner * d1}, false));
+    const std::string name = std::string("voussoir_").append(std::to_string(k));
+    s.blocks.push_back(block(name, {inner * d0, outer * d0, outer * d1, inner * d1}, false));
   }
   s.measure.push_back({"crown", {0.0, 1.0}});
   return s;
