@@ -127,12 +127,7 @@ Scene rocking_block_scene() { return rocking_column_scene(RockingSetup{}); }
 
 Scene arch_scene(double thickness_ratio) {
   constexpr int kVoussoirs = 15;
-  Scene s = base_scene(2.0, 1.0e-3, 0.05);
-  Interface face;
-  face.name = "joint";
-  face.friction_angle = 40.0;
-  s.interfaces.push_back(face);
-  s.default_interface = 0;
+  Scene s = rock_scene(2700.0, 40.0, 2.0, 1.0e-3, 0.05);
   const double inner = 1.0 - 0.5 * thickness_ratio, outer = 1.0 + 0.5 * thickness_ratio;
   s.blocks.push_back(block("floor", box({-3.0, -1.0}, {1, 0}, {0, 1}, 6.0, 1.0), true));
   for (int k = 0; k < kVoussoirs; ++k) {  // from the right springing to the left, counter-clockwise
