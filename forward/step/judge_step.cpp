@@ -71,8 +71,8 @@ DeepestPoint max_penetration(const ImplicitStepContext& ctx, const StepParameter
 // run's energy audit (forward/common/energy_check.hpp; model revision 2026-12-06.17). Taken
 // as 1/2 m v^2 + 1/2 I w^2, a 1 cm plate squeezed under a dropped block, whose shear rate
 // moves its faces as its rotation does, read as creating energy in step after step: 316
-// steps were cut, down to 3e-8 s, where 9 are now (tests/test_thin_plate.cpp). The velocities are the step's own update
-// (update_blocks.hpp, step_velocity: v1 = 2 d / dt - v0 unless the step stopped the block
+// steps were cut, down to 3e-8 s, where 9 are now (tests/test_thin_plate.cpp). The velocities
+// are the step's own update (update_blocks.hpp, step_velocity: v1 = 2 d / dt - v0 unless the step stopped the block
 // impulsively). `scale` returns the kinetic energy before the step plus the audit's floor,
 // 1e-4 x weight x H, against which the gain is judged.
 double created_energy(const BlockSystem& s, const Eigen::VectorXd& d, const StepParameters& step, double* scale) {

@@ -79,6 +79,8 @@ void run_substep(const Scene& scene, BlockSystem& s, RunRecorder& recorder, Simu
   w.moves.assign(n, Vec3::Zero());
   w.state.velocity.assign(n, Vec3::Zero());
   w.state.step_moves.assign(n, Vec3::Zero());
+  w.state.bonds = std::any_of(scene.interfaces.begin(), scene.interfaces.end(),
+                              [](const Interface& f) { return f.cohesion > 0.0 || f.tensile_strength > 0.0; });
   w.reach.assign(n, 0.0);
   w.near.assign(n, 1);
   w.extra_reach.assign(n, 0.0);

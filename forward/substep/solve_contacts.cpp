@@ -73,7 +73,7 @@ void warm_batch(std::vector<ContactManifold>& manifolds, const int* ids, bool an
     m[i] = &manifolds[ids[i]];
     struck[i] = any_struck && (st.struck_now[m[i]->block_a] || st.struck_now[m[i]->block_b]);
     most = std::max(most, m[i]->point_count);
-    cap_carried_tension(*m[i]);
+    if (st.bonds) cap_carried_tension(*m[i]);
   }
   for (int q = 0; q < most; ++q)
     for (int i = 0; i < N; ++i)

@@ -69,6 +69,9 @@ struct SweepState {
   // already (converge_impacts.cpp); the next warm start hands on only the impulses its points
   // carried into the impact, and clears it.
   std::vector<char> struck_now;
+  // False when no interface of the scene has cohesion or tensile strength (run_substep.cpp): no
+  // point can then carry tension, and the warm start skips cap_carried_tension.
+  bool bonds = true;
 };
 
 // st.pair_blocks, filled from `manifolds` when prepare_contacts has not (a state built by hand).
