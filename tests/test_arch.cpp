@@ -37,8 +37,8 @@ struct Arch {
 };
 
 // Largest displacement of the crown over the run, as a share of R; -1 if the run did not complete.
-// `strict`: the shared checks of contact_scene_audit.hpp as well (else the run must complete, its
-// own energy audit holding).
+// `strict`: the shared checks of contact_scene_audit.hpp as well, which require the run to
+// complete (else the caller asserts that, from the return).
 double crown_moved(const Arch& a, Integrator integrator, int substeps, bool strict) {
   const double R = a.radius, t = a.thickness_ratio * R;
   Scene s = base_scene(2.0 * std::sqrt(R), a.step, 0.05, integrator);
@@ -61,7 +61,7 @@ double crown_moved(const Arch& a, Integrator integrator, int substeps, bool stri
                 a.voussoirs, R, a.thickness_ratio, 1e3 * a.step, substeps);
   if (strict) expect_contact_physics(r, audit, integrator, label);
   if (r.summary.status != RunStatus::Completed) {
-    if (!strict) ADD_FAILURE() << label << ": " << r.summary.message;
+    std::printf("%s: %s\n", label, r.summary.message.c_str());
     return -1.0;
   }
   const double moved = r.summary.points.front().max_total_displacement / R;
@@ -95,6 +95,7 @@ TEST_P(Arches, StandAboveHeymansMinimumThicknessAndFallBelowIt) {
         for (const StepCase& step : steps) {
           const double moved = crown_moved({n, R, ratio, step.step}, GetParam(), step.substeps, step.strict);
           ++runs;
+          EXPECT_GE(moved, 0.0) << "the run did not complete (printed above)";
           if (moved < 0.0) continue;
           if (ratio > 0.1075) most_standing = std::max(most_standing, moved);
           else least_falling = std::min(least_falling, moved);
@@ -116,7 +117,9 @@ INSTANTIATE_TEST_SUITE_P(BothSolvers, Arches, ::testing::Values(Integrator::Impl
 TEST(Arches, DISABLED_StandAtTenMillisecondsWithTheDefaultSubstepsSubstep) {
   for (const int n : {9, 15})
     for (const double R : {1.0, 10.0})
-      for (const double ratio : {0.08, 0.15, 0.25}) crown_moved({n, R, ratio, 0.01}, Integrator::Substep, 4, false);
+      for (const double ratio : {0.08, 0.15, 0.25})
+        EXPECT_GE(crown_moved({n, R, ratio, 0.01}, Integrator::Substep, 4, false), 0.0)
+            << "the run did not complete (printed above)";
 }
 
 }  // namespace

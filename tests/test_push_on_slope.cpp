@@ -33,6 +33,13 @@ namespace {
 
 constexpr double kSlope = 30.0, kStriker = 20.0, kTarget = 35.0;
 
+// a(0) of the header, m/s^2.
+double pair_acceleration() {
+  const double g = 9.81;
+  return g * std::sin(kSlope * kDegree) -
+         g * std::cos(kSlope * kDegree) * 0.5 * (std::tan(kStriker * kDegree) + std::tan(kTarget * kDegree));
+}
+
 struct Push {
   double length, speed, step, joint;  // m, m/s, s, deg (the joint between the blocks)
 };
@@ -76,9 +83,9 @@ PushRun run_push(const Push& p, Integrator integrator) {
   out.after_impact = speed_at(0.1);
   out.acceleration = (speed_at(2.0) - speed_at(0.1)) / 1.9;
   if (p.joint == 0.0) {  // the pair's speed at 0.1 s back to the impact at a(0)
-    const double a0 = g * std::sin(kSlope * kDegree) - g * std::cos(kSlope * kDegree) * 0.5 *
-                                                           (std::tan(kStriker * kDegree) + std::tan(kTarget * kDegree));
-    EXPECT_NEAR(out.after_impact - a0 * (0.1 - impact_time), 0.5 * at_impact, 0.02 * 0.5 * at_impact) << label;
+    EXPECT_NEAR(out.after_impact - pair_acceleration() * (0.1 - impact_time), 0.5 * at_impact,
+                0.02 * 0.5 * at_impact)
+        << label;
   }
   return out;
 }
@@ -87,7 +94,7 @@ PushRun run_push(const Push& p, Integrator integrator) {
 std::pair<double, double> admissible_accelerations(double joint) {
   const double g = 9.81, sa = std::sin(kSlope * kDegree), ca = std::cos(kSlope * kDegree);
   const double t1 = std::tan(kStriker * kDegree), t2 = std::tan(kTarget * kDegree), tj = std::tan(joint * kDegree);
-  const double a0 = g * sa - g * ca * 0.5 * (t1 + t2), k = 0.5 * (t2 - t1);
+  const double a0 = pair_acceleration(), k = 0.5 * (t2 - t1);
   // The push on the target: P(S) = a(S) - g sin a + t2 (g cos a - S) = P0 - (t2 - k) S.
   const double p0 = a0 - g * sa + t2 * g * ca, slope = t2 - k;
   const double s_max = tj * p0 / (1.0 + tj * slope), s_min = -tj * p0 / (1.0 - tj * slope);
@@ -97,9 +104,7 @@ std::pair<double, double> admissible_accelerations(double joint) {
 class PushOnSlope : public ::testing::TestWithParam<Integrator> {};
 
 TEST_P(PushOnSlope, AStrikerPushesAHeldBlockDownAsTheClosedFormSays) {
-  const double g = 9.81;
-  const double a0 = g * std::sin(kSlope * kDegree) -
-                    g * std::cos(kSlope * kDegree) * 0.5 * (std::tan(kStriker * kDegree) + std::tan(kTarget * kDegree));
+  const double a0 = pair_acceleration();
   const auto [low, high] = admissible_accelerations(kTarget);
   double worst = 0.0, least = 1e30, most = -1e30;
   for (const double L : {1.0, 5.0})
