@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "forward/contact/contact_law.hpp"
+#include "forward/contact/corner_paths.hpp"
 #include "forward/step/point_springs.hpp"
 
 namespace ddafit {
@@ -15,10 +16,10 @@ constexpr double kCapTolerance = 1.01;
 
 // Classifies one point from this iterate's gap and slip (the contact law, Mohr-Coulomb).
 void classify(const Interface& face, const ContactManifold& m, ContactPoint& p, double compression,
-              const StepParameters& step) {
+              const StepParameters& step, bool passing) {
   SpringState& c = p.spring;
   const ContactState before = c.state;
-  const bool stays_open = before == ContactState::Open && c.normal_gap > -step.contact_tolerance;
+  const bool stays_open = before == ContactState::Open && (c.normal_gap > -step.contact_tolerance || passing);
   if (-compression > tensile_capacity(face, p) || stays_open) {  // tension cut-off
     c.state = ContactState::Open;
     c.normal_force = 0.0;
@@ -97,8 +98,8 @@ bool starting(const Block& b, const StepParameters& step) {
 
 }  // namespace
 
-ContactCheck check_contacts(const BlockSystem& s, ContactSet& contacts, const Eigen::VectorXd& d,
-                            const StepParameters& step) {
+ContactCheck check_contacts(const BlockSystem& s, const ContactShapes& shapes, double slop, ContactSet& contacts,
+                            const Eigen::VectorXd& d, const StepParameters& step) {
   ContactCheck result;
   double largest_change = 0.0, largest_force = 0.0, cap_excess = 0.0;
   for (int k = 0; k < static_cast<int>(contacts.manifolds.size()); ++k) {
@@ -115,7 +116,11 @@ ContactCheck check_contacts(const BlockSystem& s, ContactSet& contacts, const Ei
       const double force_before = c.normal_force;
       // N, negative in tension; the spring is unloaded at spring_reference (assemble.hpp).
       const double compression = -step.penalty * (c.normal_gap - spring_reference(p, step));
-      classify(face, m, p, compression, step);
+      // Two corners passing each other over the step's move (D's rigid part) meet nowhere.
+      const bool passing = c.state == ContactState::Open && apart_corners(m, p) &&
+                           corners_pass(s, shapes, m, p, p.separation, Vec3::Zero(), Vec3::Zero(), da.head<3>(),
+                                        db.head<3>(), 1.0, slop);
+      classify(face, m, p, compression, step, passing);
       // A point that has cycled between states within the step keeps its state for the
       // rest of the step: its gap and slip swing by small amounts as its neighbours change.
       // The one exception is closing: a point held open while it penetrates lets the

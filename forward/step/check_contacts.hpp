@@ -41,7 +41,10 @@ struct ContactCheck {
   double cap_excess = 0.0;
 };
 
-ContactCheck check_contacts(const BlockSystem& system, ContactSet& contacts, const Eigen::VectorXd& d,
-                            const StepParameters& step);
+// `shapes` and `slop` (the detection's) judge open vertex-vertex points whose corners pass
+// each other over the step: they stay open whatever their gap along the corners' line
+// (forward/contact/corner_paths.hpp).
+ContactCheck check_contacts(const BlockSystem& system, const ContactShapes& shapes, double slop, ContactSet& contacts,
+                            const Eigen::VectorXd& d, const StepParameters& step);
 
 }  // namespace ddafit

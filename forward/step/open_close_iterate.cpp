@@ -55,7 +55,7 @@ OpenCloseResult open_close_iterate(ImplicitStepContext& ctx, const StepParameter
     ContactCheck check;
     {
       ScopedTimer timer(profile.check_contacts);
-      check = check_contacts(s, contacts, eq.d, step);
+      check = check_contacts(s, ctx.detection.shapes, ctx.detection.settings.linear_slop, contacts, eq.d, step);
     }
     const bool last = pass == limit;
     // A capped lock softened in this pass (check_contacts.cpp) moved its force: the

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "forward/block_groups.hpp"
+#include "forward/contact/corner_paths.hpp"
 #include "forward/contact/contact_law.hpp"
 #include "forward/mass_matrix.hpp"
 
@@ -75,6 +76,9 @@ int resolve_impacts(ImplicitStepContext& ctx, double dt, std::vector<char>& stru
   const auto velocity = [&](int b, const Vec2& r) -> Vec2 {
     return velocity_at(momentum_rigid_velocity(s.blocks[b]), r);
   };
+  const auto rigid = [&](int b) -> Vec3 {
+    return s.blocks[b].fixed ? Vec3(Vec3::Zero()) : momentum_rigid_velocity(s.blocks[b]);
+  };
   const auto relative = [&](const ContactManifold& m, const ContactPoint& p) -> Vec2 {
     return velocity(m.block_b, p.rb) - velocity(m.block_a, p.ra);
   };
@@ -96,6 +100,11 @@ int resolve_impacts(ImplicitStepContext& ctx, double dt, std::vector<char>& stru
         const ContactPoint& p = m.points[q];
         const double target = -std::max(p.separation, 0.0) / dt;
         if (m.normal.dot(relative(m, p)) >= target - beyond) continue;
+        // Two corners that pass each other within the step meet nowhere (corner_paths.hpp).
+        if (apart_corners(m, p) &&
+            corners_pass(s, ctx.detection.shapes, m, p, p.separation, Vec3::Zero(), Vec3::Zero(), rigid(m.block_a),
+                         rigid(m.block_b), dt, ctx.detection.settings.linear_slop))
+          continue;
         const double normal_mass = effective_mass(m, p, m.normal);
         if (normal_mass <= 0.0) continue;
         impacts.push_back({k, q, target, normal_mass, effective_mass(m, p, m.tangent)});

@@ -6,6 +6,7 @@
 
 #include <array>
 #include <optional>
+#include <utility>
 #include <vector>
 
 #include "forward/block_system.hpp"
@@ -72,6 +73,9 @@ struct SweepState {
   // False when no interface of the scene has cohesion or tensile strength (run_substep.cpp): no
   // point can then carry tension, and the warm start skips cap_carried_tension.
   bool bonds = true;
+  // This step's vertex-vertex points apart at detection: (manifold, gap then), m
+  // (refresh_corner_gaps.hpp).
+  std::vector<std::pair<int, double>> corner_points;
 };
 
 // st.pair_blocks, filled from `manifolds` when prepare_contacts has not (a state built by hand).
