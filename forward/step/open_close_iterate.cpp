@@ -71,8 +71,15 @@ OpenCloseResult open_close_iterate(ImplicitStepContext& ctx, const StepParameter
     const bool stalled = calm_passes >= 2 && check.max_force_change >= 0.9 * previous_force_change;
     previous_force_change = check.max_force_change;
     const bool settled = calm && (check.max_force_change <= kNormalForceTolerance || stalled);
-    if (last && !settled && check.changed == 0 && check.capped_starting > 0 && limit < most) {
-      ++limit;  // a capped lock of a block starting to move still lets go (kStartingExtraPasses)
+    // A last pass whose states held but whose sliding points' normal forces still moved solved
+    // with friction from the pass before's forces (model revision 2026-12-06.20). Accepted so, a
+    // thin slider rocking over short blocks took its friction from an iterate in which its
+    // corner's impact had put 34 N/m on its supports where 6 N/m held it, and lost 1.3 % of its
+    // speed at each such step (5 x 0.5 cm on 1 cm blocks: up to 5.7 % short of seed Eq. 5 at 2-10
+    // ms; tests/test_thin_riders.cpp). The passes go on with those states, as for a capped lock.
+    const bool force_lag = check.max_force_change > kNormalForceTolerance;
+    if (last && !settled && check.changed == 0 && (check.capped_starting > 0 || force_lag) && limit < most) {
+      ++limit;  // a capped lock still lets go, or the friction still follows its normal forces
       continue;
     }
     // On the last pass a few contacts still changing state do not make the step wrong:
