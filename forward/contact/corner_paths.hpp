@@ -13,7 +13,7 @@ namespace ddafit {
 // corners heading at each other, but it closes as well for a corner passing the other: a block
 // riding on a 5 mm thick slider crossed each joint of the ground with its front corner 5 mm
 // above the joint's corner, the line between the corners slanted back, and the constraint
-// along it threw the pair back and the rider up (5 cm blocks: 8-48 % short of seed Eq. 4 at
+// along it threw the pair back and the rider up (5 cm blocks: 8-49 % short of seed Eq. 5 at
 // 5-10 ms on both solvers; docs/theory.md §3, "Corners passing corners").
 //
 // Whether the corners of point p pass each other over `interval` s: each corner followed

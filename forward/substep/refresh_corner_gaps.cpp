@@ -20,14 +20,14 @@ void refresh_corner_gaps(const BlockSystem& s, const ContactShapes& shapes, doub
     ContactPoint& p = m.points[0];
     p.separation = detected;
     const Vec3 &va = state.velocity[m.block_a], &vb = state.velocity[m.block_b];
-    if (!corners_pass(s, shapes, m, p, detected, state.step_moves[m.block_a], state.step_moves[m.block_b], va, vb, h,
-                      slop))
-      continue;
-    // What the pair can close along the corners' line in the substep, and the slop: the
-    // point pushes nothing while they pass.
+    // What the pair can close along the corners' line in the substep, and the slop: a point
+    // whose gap is wider pushes nothing in it either way, and needs no paths followed.
     const double reach = h * (velocity_at(vb, p.rb) - velocity_at(va, p.ra)).norm() + slop;
     const double gap = current_gap(m, p, state.step_moves);
-    if (gap < reach) p.separation += reach - gap;
+    if (gap >= reach) continue;
+    if (corners_pass(s, shapes, m, p, detected, state.step_moves[m.block_a], state.step_moves[m.block_b], va, vb, h,
+                     slop))
+      p.separation += reach - gap;
   }
 }
 
