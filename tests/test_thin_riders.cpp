@@ -6,7 +6,7 @@
 // the rider's front corner passes each joint's corner of the ground a slider's thickness
 // above it, and the point that joins the two corners (a vertex-vertex point, its normal
 // slanted back along the line between them) read as closing. Both solvers pushed along that
-// line: the slider lost 0.2 m/s and the rider hopped at every joint, 8-48 % short of seed Eq. 5
+// line: the slider lost 0.2 m/s and the rider hopped at every joint, 8-49 % short of seed Eq. 5
 // at 5-10 ms. Now a point whose corners pass each other within the (sub)step pushes nothing.
 //
 // A thin slider over short blocks on the implicit solver (model revision 2026-12-06.20,
