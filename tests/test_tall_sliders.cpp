@@ -62,7 +62,8 @@ TEST(TallSliders, TallSlidersCrossFlushJointsAsSeedEq4SaysSubstep) {
 // revision 2026-12-06.3, forward/step/settle_sliding.hpp, worst 70 %; 44 since the impulses'
 // momentum velocity of .14, forward/mass_matrix.hpp, worst 64 %; 42 since the both-ways sliding settle
 // of .15, forward/step/settle_sliding.cpp: the two 3 m sliders on 20 deg at r 0.8; 24 since a last pass
-// whose normal forces still move goes on, .20, forward/step/open_close_iterate.cpp, worst 3.9 %). At .12: 26 are 0.3 m sliders,
+// whose normal forces still move goes on, .20, forward/step/open_close_iterate.cpp, worst 3.9 %).
+// At .12: 26 are 0.3 m sliders,
 // 20 of them over joints every 0.03 m: worst 70 % off from rest (r 0.9, 40 deg), 28 % at
 // 3 m/s. 32 are 3 m sliders from rest, worst 3.9 % at the first centimetre, over one joint per
 // slider length as over ten: a kick in the first steps that does not decay. None of the 3 m
