@@ -73,6 +73,8 @@ TEST(ImpactRebound, ASlowBlockDrivenIntoAWalledRowMirroredIsNotThrownBackImplici
   expect_inelastic(Shape::WalledRow, Integrator::Implicit, {0.3, 1.0}, 48, {3, 6, 10}, {30.0}, true);
 }
 
+// Re-measured at model revision 2026-12-06.20: 1 of 192 over, a 4 m block at 1 m/s into ten 1 m
+// blocks at 45 deg, 5 ms x 4, comes back at 8.4 % of its speed (excess over its bound 0.005).
 TEST(ImpactRebound, DISABLED_ABlockDrivenIntoAFreeRowMirroredIsNotThrownBackSubstep) {
   expect_inelastic(Shape::FreeRow, Integrator::Substep, {1.0, 2.0, 5.0, 10.0}, 192, {3, 6, 10}, {30.0, 45.0}, true);
 }
@@ -104,7 +106,10 @@ TEST(ImpactRebound, ASlowBlockDrivenIntoAWalledRowMirroredIsNotThrownBackSubstep
 // impact's momentum beyond the floor's friction, rebound 5.8 %; 45 % before, as in the mirror).
 // Elsewhere in the suite listed in reverse: tests/test_impact_depth.cpp's implicit rows rebound at
 // 10.03 % (bound 10 %) and the 100-brick standing wall of tests/test_stability.cpp needs one
-// step cut (none listed as built); every other enabled test passes.
+// step cut (none listed as built); every other enabled test passes. Re-measured at model revision
+// 2026-12-06.20: the free rows (192, fastest rebound 5.2 %) and the walled rows (48, 32.9 % of
+// 0.3 m/s) are within their bounds; the columns of twenty are not, a 4 m block at 5 m/s onto
+// twenty 4 m blocks, 5 ms x 4, comes back at 9.1 % (excess 0.031).
 TEST(ImpactRebound, DISABLED_ImpactsWithTheBlocksListedInReverseDoNotBounceOffSubstep) {
   expect_inelastic(Shape::FreeRow, Integrator::Substep, {1.0, 2.0, 5.0, 10.0}, 192, {3, 6, 10}, {30.0, 45.0}, false,
                    true);
