@@ -8,6 +8,28 @@
 
 namespace ddafit {
 
+namespace {
+
+// A block's least width: over its edges, the farthest corner from the edge's line (for a concave
+// block, that of its hull's edges and of its own: never under the hull's).
+double least_width(const BlockSystem& s, const Block& b) {
+  double width = std::numeric_limits<double>::infinity();
+  for (int k = 0; k < b.vertex_count; ++k) {
+    const Vec2 p = s.vertices[b.first_vertex + k];
+    const Vec2 edge = s.vertices[b.first_vertex + (k + 1) % b.vertex_count] - p;
+    const double length = edge.norm();
+    if (!(length > 0.0)) continue;
+    double farthest = 0.0;
+    for (int j = 0; j < b.vertex_count; ++j)
+      farthest = std::max(farthest, std::abs(cross2(edge, s.vertices[b.first_vertex + j] - p)) / length);
+    width = std::min(width, farthest);
+  }
+  return width;
+}
+
+}  // namespace
+
+
 void refresh_block_geometry(BlockSystem& system, int b) {
   Block& block = system.blocks[b];
   const std::vector<Vec2> polygon(system.vertices.begin() + block.first_vertex,
@@ -103,6 +125,8 @@ BlockSystem build_block_system(const Scene& scene) {
     }
   }
   s.half_model_size = 0.5 * std::max(hi.x() - lo.x(), hi.y() - lo.y());
+  for (const Block& b : s.blocks)
+    if (!b.fixed) s.least_free_width = std::min(s.least_free_width, least_width(s, b));
 
   for (const MeasurePoint& mp : scene.measure) {
     MaterialPoint point;

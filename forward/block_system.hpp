@@ -3,6 +3,8 @@
 #pragma once
 
 #include <string>
+#include <algorithm>
+#include <limits>
 #include <vector>
 
 #include "forward/kinematics.hpp"
@@ -49,6 +51,9 @@ struct BlockSystem {
   std::vector<MaterialPoint> points;  // in Scene::measure order
   int free_block_count = 0;
   double half_model_size = 0.0;  // half the larger side of the initial bounding box
+  // m: the thinnest free block's least width at t = 0 (over its edges, the farthest corner from
+  // the edge's line); infinite without free blocks. Caps a step's move (step_move_limit).
+  double least_free_width = std::numeric_limits<double>::infinity();
 
   int next_vertex(int v) const {
     const Block& b = blocks[vertex_block[v]];
@@ -80,5 +85,18 @@ double block_length_along(const BlockSystem& system, int b, const Vec2& t);
 // slowest elastic mode of the scene, which a time step resolves first. `which` (if given) is set
 // to that block, or -1 when no block is free (the period is then 0).
 double longest_elastic_period(const Scene& scene, const BlockSystem& system, int* which = nullptr);
+
+// The largest move a step may give a block, m (model revision 2026-12-06.21): the scene's
+// share of half the model (`control.max_displacement_ratio`, Shi's g2) or half the thinnest free
+// block's least width, whichever is less. Model-sized alone, a 5 cm block 5 mm thick in a 20 m
+// scene could move 1-12 of its own lengths a step, its contacts were met too late, and it ran up
+// to 99 % short of seed Eq. 5 on the substep solver, 42 % on the implicit one
+// (tests/test_thin_riders.cpp). Half the width
+// leaves every Vajont section's 0.25 m a step as it was (the thinnest free block there is 0.54 m
+// wide, section X). The contact margin and slop follow the move (collide.hpp).
+constexpr double kStepMoveWidthShare = 0.5;
+inline double step_move_limit(double max_displacement_ratio, const BlockSystem& s) {
+  return std::min(max_displacement_ratio * s.half_model_size, kStepMoveWidthShare * s.least_free_width);
+}
 
 }  // namespace ddafit

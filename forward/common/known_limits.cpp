@@ -78,7 +78,7 @@ KnownLimits find_known_limits(const Scene& scene, const BlockSystem& s) {
   const double g = scene.gravity.norm();
   if (g <= 0.0) return out;
   const Vec2 up = -scene.gravity / g;
-  const double max_move = scene.options.max_displacement_ratio * s.half_model_size;
+  const double max_move = step_move_limit(scene.options.max_displacement_ratio, s);
   ContactDetection detection;
   if (!prepare_detection(s, detection).empty()) return out;
   set_run_tolerances(detection.settings, scene.options.search_distance_factor, max_move);

@@ -9,11 +9,12 @@ namespace ddafit {
 constexpr double kPenaltyRelaxation = 1.2;
 
 TimeStepControl make_time_step_control(const SimulationOptions& options, double max_step,
-                                       double half_model_size, double penalty, double heaviest_weight) {
+                                       double half_model_size, double max_move, double penalty,
+                                       double heaviest_weight) {
   TimeStepControl c;
   c.max_step = max_step;
   c.min_step = options.min_step_ratio * max_step;
-  c.max_displacement = options.max_displacement_ratio * half_model_size;
+  c.max_displacement = max_move;
   c.max_penetration = options.max_penetration_ratio * half_model_size;
   c.contact_tolerance = options.contact_tolerance_ratio * c.max_displacement;
   if (heaviest_weight > 0.0 && penalty > 0.0)

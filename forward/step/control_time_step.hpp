@@ -38,9 +38,11 @@ struct TimeStepControl {
 // tests/test_free_row.cpp): there the tolerance is what stops those flips.
 constexpr double kRestingOverlapShare = 0.1;
 
-// `heaviest_weight`: m |g| of the heaviest free block, N/m (0: no cap, as without gravity).
+// `heaviest_weight`: m |g| of the heaviest free block, N/m (0: no cap, as without gravity);
+// `max_move`: the largest move of a step, m (step_move_limit, block_system.hpp).
 TimeStepControl make_time_step_control(const SimulationOptions& options, double max_step,
-                                       double half_model_size, double penalty, double heaviest_weight);
+                                       double half_model_size, double max_move, double penalty,
+                                       double heaviest_weight);
 
 // Each returns false when the run cannot continue (the step or the penalty is at its limit).
 bool cut_step(TimeStepControl& control, double factor);

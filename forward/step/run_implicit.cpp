@@ -54,7 +54,8 @@ void run_implicit(const Scene& scene, BlockSystem& system, RunRecorder& recorder
   double heaviest_weight = 0.0;  // m |g| of the heaviest free block (control_time_step.hpp)
   for (int b = 0; b < static_cast<int>(system.blocks.size()); ++b)
     if (!system.blocks[b].fixed) heaviest_weight = std::max(heaviest_weight, system.mass(b) * scene.gravity.norm());
-  control = make_time_step_control(options, scene.max_step, system.half_model_size, automatic_penalty(scene),
+  control = make_time_step_control(options, scene.max_step, system.half_model_size,
+                                   step_move_limit(options.max_displacement_ratio, system), automatic_penalty(scene),
                                    heaviest_weight);
   CollideSettings& settings = ctx.detection.settings;
   set_run_tolerances(settings, options.search_distance_factor, control.max_displacement);

@@ -85,7 +85,7 @@ void run_substep(const Scene& scene, BlockSystem& s, RunRecorder& recorder, Simu
   w.near.assign(n, 1);
   w.extra_reach.assign(n, 0.0);
   for (const Material& m : scene.materials) w.deformable.push_back(!(m.rigid || o.rigid_blocks));
-  const double max_move = o.max_displacement_ratio * s.half_model_size;
+  const double max_move = step_move_limit(o.max_displacement_ratio, s);
   w.max_move = max_move;
   w.deep_overlap_ratio = deep_overlap_ratio(o.deep_overlap_ratio, s.free_block_count);
   report.deep_overlap_ratio = w.deep_overlap_ratio;
