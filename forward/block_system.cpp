@@ -3,32 +3,11 @@
 #include <algorithm>
 #include <limits>
 #include <map>
+#include <span>
 
 #include "forward/geometry.hpp"
 
 namespace ddafit {
-
-namespace {
-
-// A block's least width: over its edges, the farthest corner from the edge's line (for a concave
-// block, that of its hull's edges and of its own: never under the hull's).
-double least_width(const BlockSystem& s, const Block& b) {
-  double width = std::numeric_limits<double>::infinity();
-  for (int k = 0; k < b.vertex_count; ++k) {
-    const Vec2 p = s.vertices[b.first_vertex + k];
-    const Vec2 edge = s.vertices[b.first_vertex + (k + 1) % b.vertex_count] - p;
-    const double length = edge.norm();
-    if (!(length > 0.0)) continue;
-    double farthest = 0.0;
-    for (int j = 0; j < b.vertex_count; ++j)
-      farthest = std::max(farthest, std::abs(cross2(edge, s.vertices[b.first_vertex + j] - p)) / length);
-    width = std::min(width, farthest);
-  }
-  return width;
-}
-
-}  // namespace
-
 
 void refresh_block_geometry(BlockSystem& system, int b) {
   Block& block = system.blocks[b];
@@ -126,7 +105,9 @@ BlockSystem build_block_system(const Scene& scene) {
   }
   s.half_model_size = 0.5 * std::max(hi.x() - lo.x(), hi.y() - lo.y());
   for (const Block& b : s.blocks)
-    if (!b.fixed) s.least_free_width = std::min(s.least_free_width, least_width(s, b));
+    if (!b.fixed)
+      s.least_free_width = std::min(
+          s.least_free_width, least_width(std::span<const Vec2>(s.vertices).subspan(b.first_vertex, b.vertex_count)));
 
   for (const MeasurePoint& mp : scene.measure) {
     MaterialPoint point;

@@ -78,6 +78,23 @@ std::pair<int, int> first_self_intersection(const std::vector<Vec2>& polygon) {
   return {-1, -1};
 }
 
+double least_width(std::span<const Vec2> polygon) {
+  const size_t n = polygon.size();
+  double width = std::numeric_limits<double>::infinity();
+  for (size_t k = 0; k < n; ++k) {
+    const Vec2 p = polygon[k], edge = polygon[(k + 1) % n] - p;
+    const double length = edge.norm();
+    if (length <= 0.0) continue;
+    double farthest = 0.0;
+    for (const Vec2& q : polygon) {
+      const Vec2 d = q - p;
+      farthest = std::max(farthest, std::abs(edge.x() * d.y() - edge.y() * d.x()) / length);
+    }
+    width = std::min(width, farthest);
+  }
+  return width;
+}
+
 bool point_in_polygon(const Vec2& p, std::span<const Vec2> polygon) {
   bool inside = false;
   const size_t n = polygon.size();

@@ -43,6 +43,9 @@ std::pair<int, int> first_self_intersection(const std::vector<Vec2>& polygon);
 // unless within `tolerance` of it is requested as inside via the return of
 // distance_to_boundary().
 bool point_in_polygon(const Vec2& p, std::span<const Vec2> polygon);
+// Least width of a polygon: over its edges, the farthest corner from the edge's line (exact for a
+// convex one: the narrowest strip that holds it). Infinite without a non-degenerate edge.
+double least_width(std::span<const Vec2> polygon);
 double distance_to_boundary(const Vec2& p, const std::vector<Vec2>& polygon);
 
 // Area of the intersection of two simple polygons would need clipping; for overlap

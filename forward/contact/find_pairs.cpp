@@ -7,6 +7,7 @@
 #include <span>
 
 #include "forward/contact/convex_pieces.hpp"
+#include "forward/geometry.hpp"
 #include "forward/kinematics.hpp"
 #include "forward/parallel.hpp"
 
@@ -24,20 +25,6 @@ bool reflex_corner(const std::vector<Vec2>& polygon, int k) {
   return cross2(in, out) < -kReflexSine * in.norm() * out.norm();
 }
 
-// The least width of a convex polygon: over its edges, the farthest corner from the edge's line.
-double least_width(const std::vector<Vec2>& polygon, const std::vector<int>& piece) {
-  const int n = static_cast<int>(piece.size());
-  double width = std::numeric_limits<double>::infinity();
-  for (int k = 0; k < n; ++k) {
-    const Vec2 p = polygon[piece[k]], edge = polygon[piece[(k + 1) % n]] - p;
-    const double length = edge.norm();
-    if (length <= 0.0) continue;
-    double farthest = 0.0;
-    for (int j = 0; j < n; ++j) farthest = std::max(farthest, std::abs(cross2(edge, polygon[piece[j]] - p)) / length);
-    width = std::min(width, farthest);
-  }
-  return width;
-}
 
 }  // namespace
 
@@ -51,8 +38,10 @@ std::string build_shapes(const BlockSystem& s, ContactShapes& shapes) {
     const std::vector<std::vector<int>> pieces = convex_pieces(polygon);
     if (pieces.empty()) return s.block_names[b];
     for (const std::vector<int>& piece : pieces) {
+      std::vector<Vec2> corners;
+      for (const int k : piece) corners.push_back(polygon[k]);
       shapes.pieces.push_back(
-          {b, static_cast<int>(shapes.corners.size()), static_cast<int>(piece.size()), least_width(polygon, piece)});
+          {b, static_cast<int>(shapes.corners.size()), static_cast<int>(piece.size()), least_width(corners)});
       for (size_t k = 0; k < piece.size(); ++k) {
         const int corner = block.first_vertex + piece[k];
         const int next = block.first_vertex + piece[(k + 1) % piece.size()];
