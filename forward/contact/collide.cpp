@@ -335,6 +335,7 @@ std::string collide(const BlockSystem& s, ContactDetection& detection, const std
   }
   drop_shared_corners(s, manifolds, settings.linear_slop);
   assign_histories(s, contacts, detection.previous_histories);
+  predict_first_slip(s, contacts, settings.slip_step);
   std::string problem;
   for (const ContactManifold& m : manifolds) {
     if (m.interface >= 0) continue;

@@ -64,6 +64,9 @@ struct CollideSettings {
   // (the substep solver: kSagRatio |g| h^2, h its longest substep; 0 for the implicit solver).
   // "Proud edges" (manifold.hpp) reads edges up to max(linear_slop, proud floor, sag) proud.
   double sag = 0.0;
+  // s: the (sub)step over which a face that meets sliding first acts (predict_first_slip,
+  // slip_history.hpp); 0 (the starts before the clock runs): no prediction.
+  double slip_step = 0.0;
 };
 
 // A run's tolerances, for blocks that move at most `max_move` per step: points kept while their

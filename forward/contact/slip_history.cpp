@@ -5,6 +5,7 @@
 #include <utility>
 
 #include "forward/contact/contact_law.hpp"
+#include "forward/kinematics.hpp"
 #include "forward/parallel.hpp"
 
 namespace ddafit {
@@ -121,6 +122,37 @@ void assign_histories(const BlockSystem& s, ContactSet& contacts, std::vector<Sl
     m.history = place[m.history];
     m.friction = histories[m.history].friction;
   }
+}
+
+void predict_first_slip(const BlockSystem& s, ContactSet& contacts, double step) {
+  if (step <= 0.0) return;
+  std::vector<SlipHistory>& histories = contacts.histories;
+  std::vector<double> speed;  // per history: its fastest point's sliding speed, if it has not slid
+  for (const ContactManifold& m : contacts.manifolds) {
+    if (m.history < 0) continue;
+    const SlipHistory& h = histories[m.history];
+    if (h.slip != 0.0 || h.last_slip != 0.0 || h.settled) continue;
+    if (speed.empty()) speed.assign(histories.size(), 0.0);
+    const Vec3 va = s.blocks[m.block_a].velocity.head<3>(), vb = s.blocks[m.block_b].velocity.head<3>();
+    for (int q = 0; q < m.point_count; ++q) {
+      const ContactPoint& p = m.points[q];
+      const double v = std::abs(m.tangent.dot(velocity_at(vb, p.rb) - velocity_at(va, p.ra)));
+      speed[m.history] = std::max(speed[m.history], v);
+    }
+  }
+  if (speed.empty()) return;
+  bool any = false;
+  for (size_t k = 0; k < histories.size(); ++k) {
+    if (speed[k] <= 0.0) continue;
+    SlipHistory& h = histories[k];
+    h.last_slip = speed[k] * step;
+    h.slip_rate = h.previous_slip_rate = speed[k];
+    refresh_friction(s, h);
+    any = true;
+  }
+  if (!any) return;
+  for (ContactManifold& m : contacts.manifolds)
+    if (m.history >= 0 && speed[m.history] > 0.0) m.friction = histories[m.history].friction;
 }
 
 void prepare_shear_bands(const BlockSystem& s, double duration, ContactSet& contacts) {

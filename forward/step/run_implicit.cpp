@@ -124,6 +124,7 @@ void run_implicit(const Scene& scene, BlockSystem& system, RunRecorder& recorder
     remember_step_start(system, step_start);
     {
       ScopedTimer timer(profile.find_contacts);
+      settings.slip_step = control.step;
       const std::string problem = detect_contacts(system, ctx.detection, ctx.contacts);
       if (!problem.empty()) {
         fail(RunStatus::InvalidScene, problem);

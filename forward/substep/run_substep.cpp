@@ -143,6 +143,7 @@ void run_substep(const Scene& scene, BlockSystem& s, RunRecorder& recorder, Simu
     double landing = -1.0;
     const double dt = recorder.even_step(time, step, &landing);
     speculative_reach(w, dt);
+    settings.slip_step = dt / o.substeps;
     if (std::string problem = find_step_contacts(w); !problem.empty()) {
       summary.status = RunStatus::InvalidScene;
       std::ostringstream out;
