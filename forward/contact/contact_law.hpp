@@ -47,8 +47,8 @@ inline FrictionState friction_state(const SlipHistory& h) {
 // The bilinear law (seed Eq. 3) bends at d_c. A (sub)step whose predicted slip crosses d_c
 // takes the mean of the law over that slip, the midpoint of each part weighted by its share:
 // at one midpoint, a 0.5 m block thrown at 1 m/s onto a jointed floor (d_c 5 mm, slipping
-// 10 mm a 10 ms step) ran 1 % past seed Eq. 5 on the implicit solver (model revision
-// 2026-12-06.22; tests/test_friction_start.cpp).
+// 10 mm a 10 ms step) ran 1 % past where the work of friction stops it on the implicit solver
+// (model revision 2026-12-06.22; tests/test_friction_start.cpp).
 inline double friction_coefficient(const Interface& face, const SlipHistory& h) {
   FrictionState state = friction_state(h);
   const double d = h.slip, d_c = h.critical_distance, step = h.last_slip;

@@ -33,8 +33,9 @@ void assign_histories(const BlockSystem& system, ContactSet& contacts, std::vect
 // the increment v_t x `step` and the slip speed v_t, as if it had slid so over the last
 // (sub)step (contact_law.hpp, friction_state), and its manifolds' friction follows. Before
 // (model revision 2026-12-06.22) it took its peak friction for the whole (sub)step: a 0.5 m
-// block thrown at 1 m/s onto a jointed floor (d_c 5 mm) at 10 ms stopped 3 % short of seed
-// Eq. 5 on the implicit solver, which crossed d_c in that one step (tests/test_friction_start.cpp).
+// block thrown at 1 m/s onto a jointed floor (d_c 5 mm) at 10 ms stopped 3 % short of where the
+// work of friction stops it on the implicit solver, which crossed d_c in that one step
+// (tests/test_friction_start.cpp).
 void predict_first_slip(const BlockSystem& system, ContactSet& contacts, double step);
 
 // The diffusion grid of every thermal_pressurization interface for a run of `duration` s.
