@@ -131,7 +131,7 @@ void predict_first_slip(const BlockSystem& s, ContactSet& contacts, double step)
   for (const ContactManifold& m : contacts.manifolds) {
     if (m.history < 0) continue;
     const SlipHistory& h = histories[m.history];
-    if (h.slip != 0.0 || h.last_slip != 0.0 || h.settled) continue;
+    if (h.slip != 0.0 || h.settled) continue;  // a last increment here is this prediction's own
     if (speed.empty()) speed.assign(histories.size(), 0.0);
     const Vec3 va = s.blocks[m.block_a].velocity.head<3>(), vb = s.blocks[m.block_b].velocity.head<3>();
     for (int q = 0; q < m.point_count; ++q) {

@@ -28,10 +28,11 @@ inline std::uint64_t slip_history_key(int face_vertex, int interface) {
 // between calls).
 void assign_histories(const BlockSystem& system, ContactSet& contacts, std::vector<SlipHistory>& previous);
 
-// A face that has not slid yet (no slip, no last increment) but whose blocks slide past each
-// other now predicts its first (sub)step's slip from its fastest point's sliding speed v_t:
-// the increment v_t x `step` and the slip speed v_t, as if it had slid so over the last
-// (sub)step (contact_law.hpp, friction_state), and its manifolds' friction follows. Before
+// A face that has not slid yet (no slip) but whose blocks slide past each other now predicts its
+// first (sub)step's slip from its fastest point's sliding speed v_t: the increment v_t x `step`
+// and the slip speed v_t, as if it had slid so over the last (sub)step (contact_law.hpp,
+// friction_state), and its manifolds' friction follows. Called again with a shorter step (the
+// implicit solver's attempt cut or fitted to an output), it predicts for that step instead. Before
 // (model revision 2026-12-06.22) it took its peak friction for the whole (sub)step: a 0.5 m
 // block thrown at 1 m/s onto a jointed floor (d_c 5 mm) at 10 ms stopped 3 % short of where the
 // work of friction stops it on the implicit solver, which crossed d_c in that one step

@@ -145,6 +145,7 @@ void run_implicit(const Scene& scene, BlockSystem& system, RunRecorder& recorder
     double landing = -1.0;  // the output time or end time this step lands on exactly, if any
     while (!accepted) {
       attempt = recorder.fit_step(time, control.step, &landing);
+      if (attempt != settings.slip_step) predict_first_slip(system, ctx.contacts, attempt);
       const StepParameters step = step_parameters(attempt);
       const OpenCloseResult oc = open_close_iterate(ctx, step);
       run.open_close_iterations += oc.iterations;
