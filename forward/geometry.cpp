@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include "forward/kinematics.hpp"
+
 namespace ddafit {
 
 double signed_area(const std::vector<Vec2>& polygon) {
@@ -86,10 +88,7 @@ double least_width(std::span<const Vec2> polygon) {
     const double length = edge.norm();
     if (length <= 0.0) continue;
     double farthest = 0.0;
-    for (const Vec2& q : polygon) {
-      const Vec2 d = q - p;
-      farthest = std::max(farthest, std::abs(edge.x() * d.y() - edge.y() * d.x()) / length);
-    }
+    for (const Vec2& q : polygon) farthest = std::max(farthest, std::abs(cross2(edge, q - p)) / length);
     width = std::min(width, farthest);
   }
   return width;
