@@ -375,6 +375,34 @@ TEST(SubstepManifold, BlockCornerSetInAValleyCornerKeepsItsContact) {
   EXPECT_LT((m.normal - Vec2(1.0, -1.0) / std::sqrt(2.0)).norm(), 1e-6);  // into the bank's 45-degree face
 }
 
+// Cut ends (manifold.hpp; model revision 2026-12-06.24). A fixed block spanning a convex kink of
+// the ground has a reflex corner in its base, and its decomposition cut that corner off with a
+// sliver piece whose top is a single corner V: the block's convex corner at the joint before the
+// kink, between the joint's face and the block's top face, which is the other piece's. A 10 m
+// slider that had just crossed the joint touched V with its base, 3 um deep; the sliver's side
+// turned to that base is the cut, so the contact flipped to the sliver's joint face, 4 cm deep
+// along the slope, and threw the slider back and stopped it there (tests/test_ground_joints.cpp).
+// V is a convex corner where a cut ends: the other piece, whose top face runs on from V, holds the
+// slider, and the sliver gives no contact. At a reflex corner (the toe block in the valley corner
+// above) the flip stands.
+TEST(SubstepManifold, ACutEndingAtAConvexCornerLeavesTheContactToThePieceBeyondIt) {
+  const Vec2 down(std::cos(20.0 * M_PI / 180.0), -std::sin(20.0 * M_PI / 180.0)), up(-down.y(), down.x());
+  const Vec2 v(-0.9397, 0.3420);  // V, on the ground's 20 deg surface
+  // The joint leans 1 mrad, its foot downslope: its face then turns away from the slider's base,
+  // as round-off turned it in the run (a joint square to the surface is the sliver's incident face).
+  const std::vector<Vec2> sliver = {v, v - 10.0 * up + 0.01 * down, v - 10.0 * up + 0.563 * down};
+  const std::vector<char> solid = {1, 1, 0}, reflex = {0, 0, 1};  // the cut runs from the reflex base corner to V
+  // The slider's base on the surface line, 3 um into it, its front corner 4 cm past V.
+  const Vec2 front = v + 0.04 * down - 3e-6 * up;
+  const std::vector<Vec2> slider = {front - 10.0 * down, front, front + 6.0 * up, front - 10.0 * down + 6.0 * up};
+  const Manifold m = collide_polygons(sliver, slider, settings(0.1, 1e-3, 0.1), solid, {}, reflex, {});
+  EXPECT_EQ(m.point_count, 0) << "normal " << m.normal.transpose();
+  // Without the corners' reflex flags (unknown) the flip stands, as before the rule.
+  const Manifold flipped = collide_polygons(sliver, slider, settings(0.1, 1e-3, 0.1), solid, {});
+  ASSERT_GE(flipped.point_count, 1);
+  EXPECT_LT(flipped.normal.dot(down), -0.99);  // along the joint's face, back up the slope
+}
+
 TEST(SubstepManifold, RandomPairsMissNoContact) {
   // Hulls of 3-8 random points, ~1 m across at ~1.5 km, in random relative positions:
   // overlapping or closer than the margin must give points, farther must give none,

@@ -7,6 +7,7 @@
 #include <span>
 
 #include "forward/contact/convex_pieces.hpp"
+#include "forward/contact/ground_joints.hpp"
 #include "forward/geometry.hpp"
 #include "forward/kinematics.hpp"
 #include "forward/parallel.hpp"
@@ -30,6 +31,7 @@ bool reflex_corner(const std::vector<Vec2>& polygon, int k) {
 
 std::string build_shapes(const BlockSystem& s, ContactShapes& shapes) {
   shapes = {};
+  const GroundJoints joints = find_ground_joints(s, kReflexSine);
   std::vector<Vec2> polygon;
   for (int b = 0; b < static_cast<int>(s.blocks.size()); ++b) {
     const Block& block = s.blocks[b];
@@ -46,8 +48,11 @@ std::string build_shapes(const BlockSystem& s, ContactShapes& shapes) {
         const int corner = block.first_vertex + piece[k];
         const int next = block.first_vertex + piece[(k + 1) % piece.size()];
         shapes.corners.push_back(corner);
-        shapes.solid.push_back(s.next_vertex(corner) == next ? 1 : 0);
-        shapes.reflex.push_back(reflex_corner(polygon, piece[k]) ? 1 : 0);
+        // A joint of the fixed ground is no face (ground_joints.hpp); at a corner it ends, the
+        // ground's boundary, not the block's, says whether the corner is reflex.
+        shapes.solid.push_back(s.next_vertex(corner) == next && !joints.covered[corner] ? 1 : 0);
+        const bool reflex = joints.shared[corner] ? joints.reflex[corner] : reflex_corner(polygon, piece[k]);
+        shapes.reflex.push_back(reflex ? 1 : 0);
       }
     }
   }

@@ -242,6 +242,25 @@ Manifold collide_polygons(std::span<const Vec2> a, std::span<const Vec2> b, cons
   };
   Incident incident = incident_for(flip);
   if (incident.edge < 0) return m;
+  const auto reflex_at = [&](int owner, int vertex) {
+    const std::span<const char> r = owner == 0 ? a_reflex : b_reflex;
+    return !r.empty() && r[static_cast<size_t>(vertex)] != 0;
+  };
+  // Cut ends (manifold.hpp): the incident piece's corner deepest across the reference face
+  // (of `ref_edge` on polygon `f ? b : a`) is a convex corner of its block where a cut ends.
+  const auto cut_end_under = [&](bool f, int ref_edge) {
+    const Shape& ref = f ? sb : sa;
+    const Shape& inc = f ? sa : sb;
+    const std::span<const char> solid = f ? a_solid : b_solid, reflex = f ? a_reflex : b_reflex;
+    if (solid.empty() || reflex.empty()) return false;  // no cuts, or no corners known to be convex
+    const Vec2 normal = face_normal(ref, ref_edge, flat), p0 = ref.at(ref_edge);
+    int deepest_corner = 0;
+    for (int k = 1; k < inc.n; ++k)
+      if (normal.dot(inc.at(k) - p0) < normal.dot(inc.at(deepest_corner) - p0)) deepest_corner = k;
+    const int before = (deepest_corner + inc.n - 1) % inc.n;
+    const bool on_cut = !solid[static_cast<size_t>(deepest_corner)] || !solid[static_cast<size_t>(before)];
+    return on_cut && !reflex_at(f ? 0 : 1, deepest_corner);
+  };
   // An incident piece whose faces towards the reference face are all cuts (facing > 0)
   // offers no face there: across its cuts lie the block's other pieces. The contact, if
   // any, is then one of its solid faces against the other polygon: take the other
@@ -250,6 +269,7 @@ Manifold collide_polygons(std::span<const Vec2> a, std::span<const Vec2> b, cons
   // read the opposite bank's face as turned away from it, got no point, and went into the
   // bank (the first axis was its own face; the bank piece's side facing it was a cut).
   if (settings.flip_for_cuts && incident.facing > 0.0) {
+    if (cut_end_under(flip, flip ? edge_b : edge_a)) return m;
     // The other polygon's flush face, else its best axis: a toe block lying against the
     // line of its own face through the foot of Vajont section VII's bank (which has no
     // face the block lies against) met only the bank piece's cut, and lost the contact.
@@ -260,10 +280,6 @@ Manifold collide_polygons(std::span<const Vec2> a, std::span<const Vec2> b, cons
     incident = incident_for(flip);
     if (incident.edge < 0 || incident.facing > 0.0) return m;
   }
-  const auto reflex_at = [&](int owner, int vertex) {
-    const std::span<const char> r = owner == 0 ? a_reflex : b_reflex;
-    return !r.empty() && r[static_cast<size_t>(vertex)] != 0;
-  };
   // The contact with the reference face of polygon `flip ? b : a` and the incident face.
   // `hollow` is set when the closest feature of the incident polygon is a reflex corner.
   bool hollow = false;

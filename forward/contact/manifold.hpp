@@ -161,6 +161,17 @@ struct ManifoldSettings {
 // that far into another, and such a point is a corner read across a cut, inside the
 // block (one read 18 m "deep" on Vajont section I).
 //
+// Cut ends: with `flip_for_cuts`, when the corner of the incident piece deepest across the
+// reference face is a convex corner of its block at the end of a cut, there is no contact: the
+// block's surface at that corner runs on along the piece across the cut, whose manifold holds the
+// other polygon. Flipped to the piece's best solid face, the contact read a fixed block's joint
+// face, perpendicular to the surface, under a slider that had just crossed the joint onto the
+// block's other piece: 4 cm deep along the slope, it threw the slider back and stopped it, on both
+// solvers (model revision 2026-12-06.24; a block spanning a convex kink, its reflex base corner cut
+// off up to the joint's corner). At a reflex corner, or where the corners are not known
+// (`a_reflex`/`b_reflex` empty), the flip stands: a toe block in the valley corner meets the
+// bank's face there.
+//
 // Reflex corners: `a_reflex[i]` / `b_reflex[i]` true marks corner i as a reflex corner of
 // its block (it turns inward there, and a cut starts there). Seen from outside, no corner:
 // it is never the end of a corner-to-corner contact, an incident point there hands the
