@@ -12,19 +12,26 @@
 namespace ddafit {
 namespace {
 
-// The largest piece has a few dozen corners (merged Vajont blocks); copies of two pieces'
-// corners live on the stack of the narrow phase.
+// The pieces of meshed blocks have a few dozen corners at most (merged Vajont blocks): copies of
+// two pieces' corners live on the stack of the narrow phase up to this many each, and beyond it
+// on the heap (gather).
 constexpr int kMaxCorners = 128;
 
 // Contacts whose normal is within this of horizontal (|n . g| / |g| below it) are side by
 // side: neither block is above the other, and the lower block id overrides.
 constexpr double kSideBySide = 1e-3;
 
-int gather(const BlockSystem& s, const ContactShapes& shapes, int piece, Vec2* out) {
+// A piece's corners, copied into `stack` (kMaxCorners long) or, for a larger piece, into
+// `spill`. A fixed ground given by a surface digitised every few metres keeps all its straight
+// vertices in one convex piece; cut at 128 corners, the piece read as its first 128 let a 30 m
+// slider sink into the ground (model revision 2026-12-06.25; tests/test_ground_joints.cpp).
+std::span<const Vec2> gather(const BlockSystem& s, const ContactShapes& shapes, int piece, Vec2* stack,
+                             std::vector<Vec2>& spill) {
   const ConvexPiece& p = shapes.pieces[piece];
-  const int n = std::min(p.count, kMaxCorners);
-  for (int k = 0; k < n; ++k) out[k] = s.vertices[shapes.corners[p.first + k]];
-  return n;
+  Vec2* out = stack;
+  if (p.count > kMaxCorners) spill.resize(static_cast<size_t>(p.count)), out = spill.data();
+  for (int k = 0; k < p.count; ++k) out[k] = s.vertices[shapes.corners[p.first + k]];
+  return {out, static_cast<size_t>(p.count)};
 }
 
 // The last step's manifold of the same pair of pieces, if any (both lists are sorted).
@@ -238,8 +245,10 @@ std::string collide(const BlockSystem& s, ContactDetection& detection, const std
     const auto [a, b] = pairs[k];
     const int block_a = shapes.pieces[a].block, block_b = shapes.pieces[b].block;
     Vec2 corners_a[kMaxCorners], corners_b[kMaxCorners];
-    const int na = gather(s, shapes, a, corners_a);
-    const int nb = gather(s, shapes, b, corners_b);
+    thread_local std::vector<Vec2> spill_a, spill_b;
+    const std::span<const Vec2> piece_a = gather(s, shapes, a, corners_a, spill_a);
+    const std::span<const Vec2> piece_b = gather(s, shapes, b, corners_b, spill_b);
+    const int na = static_cast<int>(piece_a.size()), nb = static_cast<int>(piece_b.size());
     const std::span<const char> solid(shapes.solid), reflex(shapes.reflex);
     const double reach =
         settings.extra_reach.empty() ? 0.0 : settings.extra_reach[block_a] + settings.extra_reach[block_b];
@@ -270,7 +279,7 @@ std::string collide(const BlockSystem& s, ContactDetection& detection, const std
     ms.support_a = support[block_a];
     ms.support_b = support[block_b];
     const int first_a = shapes.pieces[a].first, first_b = shapes.pieces[b].first;
-    geometry[k] = collide_polygons(std::span<const Vec2>(corners_a, na), std::span<const Vec2>(corners_b, nb), ms,
+    geometry[k] = collide_polygons(piece_a, piece_b, ms,
                                    solid.subspan(first_a, na), solid.subspan(first_b, nb), reflex.subspan(first_a, na),
                                    reflex.subspan(first_b, nb));
   }
