@@ -12,10 +12,12 @@ under a convex kink) is refused by ddafit (exit 2) and printed as FAILED. Each c
   jointed   fixed blocks, one of them ending at K (the joint at K along the bisector of the faces),
   spanning  the same, the block over K spanning from the joint before it to the joint after it,
 and prints the jointed and spanning grounds' final positions of the slider's centre off the whole
-ground's, as shares of its travel there; '<<<' marks more than 1 %. The three are one ground, so
+ground's, as shares of its travel there; '<<<' marks more than 1 %. With --steps the face is
+straight and has a step at K of -5 to +20 % of the slider's length (negative: up) instead. The three are one ground, so
 anything more is a ghost of the joints or cuts. Runs two at a time; not a timing.
 
     python3 scripts/kink_sweep.py --ddafit build/apps/ddafit/ddafit --seed 1 --cases 16 --out /tmp/kinks
+    python3 scripts/kink_sweep.py --ddafit build/apps/ddafit/ddafit --seed 5 --cases 16 --steps --out /tmp/steps
 """
 import argparse
 import csv
@@ -57,11 +59,20 @@ def scene(c):
     top = [add((0.0, 0.0), t1, -x) for x in reversed(cuts)] + [(0.0, 0.0)]
     base = [add(p, n1, -depth) for p in top[:-1]] + [kb]
     k_joint = len(top) - 1
+    lower_start = add((0.0, 0.0), n1, -c["h"] * length)  # --steps: below K (a step down) or above it
     for x in sorted({k * spacing for k in range(1, int(lower / spacing) + 1)} | {lower}):
-        top.append(add((0.0, 0.0), t2, x))
+        top.append(add(lower_start, t2, x))
         base.append(add(top[-1], n2, -depth))
     r = lambda p: [round(p[0], 9), round(p[1], 9)]
-    piece = lambda i, j: [r(p) for p in base[i:j + 1]] + [r(p) for p in reversed(top[i:j + 1])]
+
+    def piece(i, j):  # the ground from joint i to joint j, counter-clockwise; a step's riser at K
+        tops = list(top[i:j + 1])
+        if c["h"] != 0.0 and i <= k_joint <= j:
+            if i == k_joint:
+                tops[0] = lower_start
+            elif j != k_joint:
+                tops.insert(k_joint - i + 1, lower_start)
+        return [r(p) for p in base[i:j + 1]] + [r(p) for p in reversed(tops)]
     blocks = []
     if c["ground"] == "whole":
         blocks.append({"name": "ground", "group": "base", "material": "rock", "fixed": True,
@@ -104,11 +115,13 @@ def run(ddafit, out, c):
     return (float(last["ux"]), float(last["uy"]), math.hypot(float(last["vx"]), float(last["vy"]))), ""
 
 
-def cases(seed, count):
+def cases(seed, count, steps):
     rng = random.Random(seed)
     for _ in range(count):
         a1 = rng.choice([20, 30, 40])
         a2 = max(a1 + rng.choice([-30, -20, -10, -5, 5, 10]), 0)
+        if steps:  # a straight face with a step at K
+            a2 = a1
         phi = rng.choice([10, 15]) if a2 < 15 else rng.choice([10, 15, 20])
         length, v0 = rng.choice([0.1, 1.0, 10.0, 30.0]), rng.choice([0.0, 3.0, 10.0, 25.0])
         c = dict(a1=a1, a2=a2, phi=phi, L=length, aspect=rng.choice([0.3, 0.6]), D=rng.choice([0.2, 1.0, 3.0]) * length,
@@ -117,6 +130,9 @@ def cases(seed, count):
         reach = (-v0 + math.sqrt(v0 * v0 + 2 * a * c["D"])) / a if a > 0 else c["D"] / max(v0, 1e-9)
         c["T"] = round(reach + max(1.0, 0.5 * math.sqrt(length)), 3)
         c["run"] = (v0 + 10 * c["T"]) * c["T"] + 5 * length
+        c["h"] = 0.0
+        if steps:  # the step's height in slider lengths (> 0 down); the flush tolerance eta is 0.02 of them
+            c["h"] = rng.choice([-0.05, -0.01, -0.002, 0.002, 0.01, 0.05, 0.2])
         for solver in ["implicit", "substep"]:
             yield [dict(c, solver=solver, ground=g) for g in ["whole", "jointed", "spanning"]]
 
@@ -128,8 +144,9 @@ def main():
     parser.add_argument("--cases", type=int, default=16, help="cases, each on both solvers and three grounds")
     parser.add_argument("--out", default="kink-sweep")
     parser.add_argument("--jobs", type=int, default=2)
+    parser.add_argument("--steps", action="store_true", help="a step at K on a straight face instead of a kink")
     args = parser.parse_args()
-    groups = list(cases(args.seed, args.cases))
+    groups = list(cases(args.seed, args.cases, args.steps))
     flat = [c for g in groups for c in g]
     with ThreadPoolExecutor(args.jobs) as pool:
         results = list(pool.map(lambda c: run(args.ddafit, args.out, c), flat))
