@@ -29,7 +29,9 @@ BlockInput box(const std::string& name, Vec2 centre, double w, double h, bool fi
                              fixed);
 }
 
-enum class Shape { Stack, FreeRow, WalledRow };
+// WalledRowOneGround: the walled row, its wall and floor one L-shaped fixed block (the wall's
+// foot a reflex corner of the ground, as where a slide meets the opposite bank).
+enum class Shape { Stack, FreeRow, WalledRow, WalledRowOneGround };
 
 struct Case {
   Shape shape;
@@ -48,7 +50,10 @@ struct Case {
 };
 
 std::string label(const Case& c) {
-  const char* shape = c.shape == Shape::Stack ? "onto a stack of" : c.shape == Shape::FreeRow ? "into a free row of" : "into a walled row of";
+  const char* shape = c.shape == Shape::Stack                ? "onto a stack of"
+                      : c.shape == Shape::FreeRow            ? "into a free row of"
+                      : c.shape == Shape::WalledRowOneGround ? "into a row walled by one L-shaped ground of"
+                                                             : "into a walled row of";
   char text[200];
   std::snprintf(text, sizeof text, "%s: %g m block at %g m/s %s %d blocks %g m thick, friction %g deg, %g ms x %d",
                 c.integrator == Integrator::Implicit ? "implicit" : "substep", c.size, c.speed, shape, c.count,
@@ -87,6 +92,13 @@ Scene scene_of(const Case& c) {
       s.measure.push_back({"row_" + std::to_string(i), {x + 0.5 * t, 0.5 * w}});
     }
     if (c.shape == Shape::WalledRow) s.blocks.push_back(box("wall", {x + 0.5 * w, w}, w, 2.0 * w, true));
+    if (c.shape == Shape::WalledRowOneGround) {  // the floor and the wall as one block
+      const double half = 0.5 * (40.0 * w + 4.0 * c.count * t);
+      s.blocks[0] = verification::block("floor",
+                                        {{-half, -w}, {half, -w}, {half, 0.0}, {x + w, 0.0}, {x + w, 2.0 * w},
+                                         {x, 2.0 * w}, {x, 0.0}, {-half, 0.0}},
+                                        true);
+    }
     striker = box("striker", {0.0, 0.5 * w}, w, w, false);
     striker.velocity = Vec2(c.speed, 0.0);
   }
