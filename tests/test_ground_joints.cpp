@@ -101,12 +101,12 @@ Scene kink_scene(const Kink& c, Ground ground) {
   base.push_back(-depth / bisector.dot(n1) * bisector);
   for (int k = 1; k <= kLowerBlocks; ++k) top.push_back(k * spacing * t2), base.push_back(top.back() - depth * n2);
   const int kink_joint = kUpperBlocks, last = static_cast<int>(top.size()) - 1;
-  double half_size = 0.0;  // of the model, as BlockSystem::half_model_size (the slider lies within)
+  // Half the larger side of the ground's bounding box, as BlockSystem::half_model_size (the
+  // slider lies within it).
+  Vec2 lo = top.front(), hi = top.front();
   for (const std::vector<Vec2>* points : {&top, &base})
-    for (const Vec2& p : *points)
-      for (const Vec2& q : {top.front(), base.front(), top.back(), base.back()})
-        half_size = std::max(half_size, 0.5 * (p - q).cwiseAbs().maxCoeff());
-  s.options.max_displacement_ratio = c.move * c.length / half_size;
+    for (const Vec2& p : *points) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+  s.options.max_displacement_ratio = c.move * c.length / (0.5 * (hi - lo).maxCoeff());
   const auto piece = [&](int from, int to) {  // the ground from joint `from` to joint `to`, counter-clockwise
     std::vector<Vec2> polygon;
     for (int k = from; k <= to; ++k) polygon.push_back(base[k]);

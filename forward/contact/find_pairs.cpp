@@ -23,7 +23,7 @@ constexpr double kReflexSine = 1e-3;
 bool reflex_corner(const std::vector<Vec2>& polygon, int k) {
   const int n = static_cast<int>(polygon.size());
   const Vec2 in = polygon[k] - polygon[(k + n - 1) % n], out = polygon[(k + 1) % n] - polygon[k];
-  return cross2(in, out) < -kReflexSine * in.norm() * out.norm();
+  return turns_inward(in, out, kReflexSine);
 }
 
 

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 
-#include "forward/kinematics.hpp"
 
 namespace ddafit {
 namespace {
@@ -99,7 +98,7 @@ GroundJoints find_ground_joints(const BlockSystem& s, double reflex_sine) {
     if (covering[v] < 0 && covering[s.previous_vertex(v)] < 0) continue;
     Vec2 in, out;
     if (!arriving(v, in) || !leaving(v, out)) continue;
-    joints.reflex[v] = cross2(in, out) < -reflex_sine * in.norm() * out.norm() ? 1 : 0;
+    joints.reflex[v] = turns_inward(in, out, reflex_sine) ? 1 : 0;
     joints.shared[v] = 1;
   }
   return joints;

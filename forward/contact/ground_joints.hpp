@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "forward/block_system.hpp"
+#include "forward/kinematics.hpp"
 
 namespace ddafit {
 
@@ -25,5 +26,11 @@ struct GroundJoints {
   std::vector<char> reflex;
 };
 GroundJoints find_ground_joints(const BlockSystem& system, double reflex_sine);
+
+// A boundary arriving along `in` and leaving along `out` (counter-clockwise) turns clockwise,
+// inward, by more than the sine `sine`: a reflex corner (of a block, or of the fixed ground).
+inline bool turns_inward(const Vec2& in, const Vec2& out, double sine) {
+  return cross2(in, out) < -sine * in.norm() * out.norm();
+}
 
 }  // namespace ddafit
