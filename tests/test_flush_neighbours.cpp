@@ -136,6 +136,73 @@ TEST(FlushNeighbours, ABlockRestingOnOneBlockBesideTheNextOfAFlushSurfaceHasNoCo
         }
 }
 
+// Face to face (face_axes.cpp, face_to_face): a block tilted over a short block B, hovering
+// more than eta above B's top, its base line, extended past its front, passing within eta of
+// B's far top corner. B's part near that line lies beside the base, but B's top runs under the
+// base: the two are face to face, no neighbours along one line, and the contact is B's top
+// against the base, two points, apart (one where the rear's gap is beyond the margin). Before model revision 2026-12-07.1 the manifold was
+// empty and a slider tumbling over a floor jointed every 1.3 of its lengths, read so by the
+// block under it, dropped into that block's joint with the next (scripts/kink_sweep.py, seed 4:
+// 0.10 m/s left of 5.9 m/s on the whole floor). Swept over tilts, sizes, how far the base line
+// passes above the corner, and both orders of the pair.
+TEST(FlushNeighbours, ABlockTiltedOverAShortBlockTouchesItsTopFace) {
+  for (const double tilt_degrees : {0.5, 1.6, 4.0, 8.0})
+    for (const double s : {0.1, 1.0, 11.0})
+      for (const double passes : {0.3, 0.8}) {  // the base line's height over B's far corner, in eta
+        const double tilt = tilt_degrees * kDegree, eta = kFlushRatio * s, above = passes * eta;
+        // The slider's front lies where its base line is 1.5 eta above B's top (B's part within
+        // eta of the line then begins beyond the front), and its rear 0.2 s inside B's near end.
+        const double ahead = (1.5 * eta - above) / std::tan(tilt), length = ahead + 1.2 * s;
+        const std::vector<Vec2> b = {kFar + Vec2(0.0, -s), kFar + Vec2(length, -s), kFar + Vec2(length, 0.0), kFar};
+        const Vec2 t(std::cos(tilt), -std::sin(tilt));
+        const double front = -ahead / std::cos(tilt);
+        const std::vector<Vec2> slider = square_on(kFar + Vec2(length, above), t, front - s, s, 0.0);
+        for (const bool b_first : {true, false}) {
+          SCOPED_TRACE(testing::Message() << "tilt " << tilt_degrees << " deg, size " << s << " m, line "
+                                          << passes << " eta above the corner" << (b_first ? "" : ", slider first"));
+          const Manifold m = b_first ? collide_polygons(b, slider, flush_settings(s))
+                                     : collide_polygons(slider, b, flush_settings(s));
+          // The rear end's point only while its gap is within the margin (flush_settings: 0.05 s).
+          const int expected = 1.5 * eta + s * std::sin(tilt) < 0.05 * s ? 2 : 1;
+          ASSERT_EQ(m.point_count, expected);
+          // The normal is B's top's or the base's (from B to the slider either way round).
+          const Vec2 up = b_first ? m.normal : Vec2(-m.normal);
+          EXPECT_GT(up.y(), std::cos(tilt) - 1e-12);
+          // Apart: the gaps under the base's two ends, 1.5 eta at the front and more behind.
+          for (int k = 0; k < m.point_count; ++k) {
+            EXPECT_GT(m.points[k].separation, 1.4 * eta);
+            EXPECT_LT(m.points[k].separation, 1.5 * eta + 1.01 * s * std::sin(tilt));
+          }
+        }
+      }
+}
+
+// ... and where B's most opposite face lies along the base line beside it, they stay
+// neighbours. A slider that has just passed a convex kink K of a piece, its base along the
+// face T before the kink (within eta / 10 of its line), lies over the falling face N, which
+// runs under the base (the spanning ground of tests/test_ground_joints.cpp, kink 10 deg).
+// Its contact, if any, is with N under it: no point at K or on T, behind its rear corner.
+// Reading T as the face under it put a point at K and braked the slider (0.35 of its travel).
+TEST(FlushNeighbours, ABlockJustPastAConvexKinkHasNoContactBehindIt) {
+  for (const double kink_degrees : {5.0, 10.0, 20.0})
+    for (const double s : {0.1, 1.0, 11.0})
+      for (const double past : {0.05, 0.1, 0.5})  // the rear corner past K, in slider lengths
+        for (const double tilt_share : {0.0, 0.1, 0.5}) {  // the base turned towards N, of the kink
+          const double kink = kink_degrees * kDegree, tilt = tilt_share * kink;
+          const std::vector<Vec2> piece = kinked_piece(kink);
+          const Vec2 t(std::cos(tilt), -std::sin(tilt));
+          const std::vector<Vec2> slider = square_on(kFar, t, past * s, s, -1e-3 * kFlushRatio * s);
+          for (const bool piece_first : {true, false}) {
+            SCOPED_TRACE(testing::Message() << "kink " << kink_degrees << " deg, size " << s << " m, " << past
+                                            << " past K, tilt " << tilt_share << (piece_first ? "" : ", slider first"));
+            const Manifold m = piece_first ? collide_polygons(piece, slider, flush_settings(s))
+                                           : collide_polygons(slider, piece, flush_settings(s));
+            for (int k = 0; k < m.point_count; ++k)
+              EXPECT_GT((m.points[k].point - kFar).dot(t), past * s - 1e-6 * s) << "a point behind the slider";
+          }
+        }
+}
+
 // "Proud edges" (manifold.hpp): a block whose corner has just crossed a joint onto a neighbour
 // that stands proud of the face it rests on by no more than linear_slop touches that neighbour
 // through its own face (the one it was held up by), not through the joint's face, also when

@@ -47,10 +47,36 @@ bool hollow_near(const Shape& q, std::span<const char> q_reflex, const Vec2& p0,
   return false;
 }
 
+// q's face most nearly opposite to the face (the incident face a contact with it would take)
+// runs along the face, under it, for more than eta: q lies face to face with it, apart by
+// more than eta there (else its part near the line would reach along the face), and comes
+// within eta of the face's line only beyond the face's end. A slider tilted 1.6 deg over a
+// 0.13 m block whose far top corner lies within eta of the slider's base line, extended, is
+// such a pair: a contact of two points, not neighbours along one line (docs/verification.md,
+// "Kinks of the ground"). Where q's most opposite face lies beside the face along its line
+// (the face before a convex kink, under a slider that has just passed the kink), they are
+// neighbours, whatever q's next face does under the face.
+bool face_to_face(const Shape& q, std::span<const char> q_solid, const Vec2& normal, const Vec2& tangent,
+                  const Vec2& p0, double from, double to, double eta) {
+  int most = -1;
+  double facing = 0.0;
+  for (int k = 0; k < q.n; ++k) {
+    if (!q_solid.empty() && !q_solid[static_cast<size_t>(k)]) continue;  // a cut is no face (incident_edge)
+    const Vec2 edge = q.at(k + 1) - q.at(k);
+    const double length = edge.norm();
+    if (!(length > 0.0)) continue;
+    const double f = outward(edge).dot(normal) / length;
+    if (f < facing) most = k, facing = f;
+  }
+  if (most < 0) return false;
+  const double u0 = tangent.dot(q.at(most) - p0), u1 = tangent.dot(q.at(most + 1) - p0);
+  return std::min(to, std::max(u0, u1)) - std::max(from, std::min(u0, u1)) > eta;
+}
+
 }  // namespace
 
 Axis best_axis(const Shape& p, std::span<const char> solid, std::span<const char> reflex, const Shape& q,
-               std::span<const char> q_reflex, const AxisLimits& limits) {
+               std::span<const char> q_solid, std::span<const char> q_reflex, const AxisLimits& limits) {
   const double tiny = limits.tiny, apart = limits.apart, eta = limits.eta, flat = limits.flat;
   Axis best;
   for (int i = 0; i < p.n; ++i) {
@@ -78,7 +104,8 @@ Axis best_axis(const Shape& p, std::span<const char> solid, std::span<const char
       // "Reflex corners").
       const int end = near.hi <= from ? f.first : f.last;
       if (along <= 0.0 && (reflex.empty() || !reflex[static_cast<size_t>(end)]) &&
-          !hollow_near(q, q_reflex, p0, normal, tangent, from, to, eta, apart))
+          !hollow_near(q, q_reflex, p0, normal, tangent, from, to, eta, apart) &&
+          !(limits.flush_faces && face_to_face(q, q_solid, normal, tangent, p0, from, to, eta)))
         best.flush_beside = true;
       // Close to the line only: a joint meeting the surface at 30 deg has the slider's
       // bottom within eta of its line for 2 eta, which is no riding along it.

@@ -130,9 +130,10 @@ inline double support_agreement(const Vec2& normal, const AxisLimits& limits) {
 }
 // `reflex` and `q_reflex` mark the corners that are reflex corners of their blocks (empty:
 // none): q beside such an end of a face, or with such a corner near the face's line, is no
-// flush neighbour.
+// flush neighbour. Nor is q whose face most nearly opposite to the face (of its solid edges,
+// `q_solid`) runs under it for more than eta: the two are face to face (face_axes.cpp).
 Axis best_axis(const Shape& p, std::span<const char> solid, std::span<const char> reflex, const Shape& q,
-               std::span<const char> q_reflex, const AxisLimits& limits);
+               std::span<const char> q_solid, std::span<const char> q_reflex, const AxisLimits& limits);
 
 // "Proud edges" (manifold.hpp): of p's faces that may be a reference face (solid, at least
 // eta long) and that q overlaps by no more than `depth` (separation in [-depth, 0]), the one

@@ -141,6 +141,32 @@ void clip_face_contact(const Shape& ref, const Face& rf, const Shape& inc, const
 }
 
 
+// Beside a flush face (manifold.hpp): the incident face, the face of `inc` most nearly
+// opposite to the reference face, lies wholly beyond one end of it along its line, and the
+// next face of `inc` from the end nearest the reference face runs under it. The contact is
+// that next face: the first lies beside the reference face, a neighbour along its line. A
+// slider just past a convex kink of a fixed piece, its base along the face before the kink,
+// lies against its base's line through the kink's corner; the face before the kink, beside
+// the base, gave a point at the corner, behind the slider (tests/test_flush_neighbours.cpp).
+Incident under_flush_face(const Shape& ref, int ref_edge, const Shape& inc, std::span<const char> solid,
+                          Incident incident, double flat) {
+  const Face rf = grow_face(ref, ref_edge, flat), incf = grow_face(inc, incident.edge, flat);
+  const Vec2 v11 = ref.at(rf.first), span = ref.at(rf.last) - v11;
+  const double length = span.norm();
+  const Vec2 tangent = span / length, normal = outward(tangent);
+  const auto u = [&](int k) { return tangent.dot(inc.at(k) - v11); };
+  // The incident face runs against the tangent: from incf.first (far along) to incf.last.
+  int next = -1;
+  if (u(incf.first) <= 0.0) next = (incf.first + inc.n - 1) % inc.n;  // beside the first end
+  if (u(incf.last) >= length) next = incf.last % inc.n;                // beside the last end
+  if (next < 0 || (!solid.empty() && !solid[static_cast<size_t>(next)])) return incident;
+  const Vec2 edge = inc.at(next + 1) - inc.at(next);
+  const double facing = normal.dot(outward(edge)) / edge.norm();
+  const double lo = std::min(u(next), u(next + 1)), hi = std::max(u(next), u(next + 1));
+  if (!(facing < 0.0) || hi <= 0.0 || lo >= length) return incident;
+  return {next, facing};
+}
+
 }  // namespace
 
 Manifold collide_polygons(std::span<const Vec2> a, std::span<const Vec2> b, const ManifoldSettings& settings,
@@ -165,10 +191,10 @@ Manifold collide_polygons(std::span<const Vec2> a, std::span<const Vec2> b, cons
   // contact on one half only: its tip sank 18 cm into the other half.
   const double eta = settings.flush_tolerance, flat = std::max(1e-3 * linear_slop, 0.25 * eta);
   const AxisLimits limits_a{tiny, max_distance, eta, flat, settings.flush_faces, settings.support_a, settings.support_b};
-  const Axis axis_a = best_axis(sa, a_solid, a_reflex, sb, b_reflex, limits_a);
+  const Axis axis_a = best_axis(sa, a_solid, a_reflex, sb, b_solid, b_reflex, limits_a);
   if (axis_a.apart > max_distance) return m;
   const AxisLimits limits_b{tiny, max_distance, eta, flat, settings.flush_faces, settings.support_b, settings.support_a};
-  const Axis axis_b = best_axis(sb, b_solid, b_reflex, sa, a_reflex, limits_b);
+  const Axis axis_b = best_axis(sb, b_solid, b_reflex, sa, a_solid, a_reflex, limits_b);
   if (axis_a.edge < 0 && axis_b.edge < 0) return m;
   if (axis_b.apart > max_distance) return m;
   const auto cut_in = [](std::span<const char> solid) {
@@ -242,6 +268,8 @@ Manifold collide_polygons(std::span<const Vec2> a, std::span<const Vec2> b, cons
   };
   Incident incident = incident_for(flip);
   if (incident.edge < 0) return m;
+  if (flush_face) incident = under_flush_face(flip ? sb : sa, flip ? edge_b : edge_a, flip ? sa : sb,
+                                              flip ? a_solid : b_solid, incident, flat);
   const auto reflex_at = [&](int owner, int vertex) {
     const std::span<const char> r = owner == 0 ? a_reflex : b_reflex;
     return !r.empty() && r[static_cast<size_t>(vertex)] != 0;
