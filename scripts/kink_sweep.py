@@ -12,12 +12,17 @@ under a convex kink) is refused by ddafit (exit 2) and printed as FAILED. Each c
   jointed   fixed blocks, one of them ending at K (the joint at K along the bisector of the faces),
   spanning  the same, the block over K spanning from the joint before it to the joint after it,
 and prints the jointed and spanning grounds' final positions of the slider's centre off the whole
-ground's, as shares of its travel there; '<<<' marks more than 1 %. With --steps the face is
+ground's, as shares of its travel there; '<<<' marks more than 1 %. With --free the third ground is
+  free      the jointed blocks free (not fixed), on a fixed bed two lengths deep that holds them
+            (60 deg on their joints and bed),
+a jointed slide's surface rather than its bed; --solvers picks the solvers. With --steps the face is
 straight and has a step at K of -5 to +20 % of the slider's length (negative: up) instead. The three are one ground, so
 anything more is a ghost of the joints or cuts. Runs two at a time; not a timing.
 
     python3 scripts/kink_sweep.py --ddafit build/apps/ddafit/ddafit --seed 1 --cases 16 --out /tmp/kinks
     python3 scripts/kink_sweep.py --ddafit build/apps/ddafit/ddafit --seed 5 --cases 16 --steps --out /tmp/steps
+    python3 scripts/kink_sweep.py --ddafit build/apps/ddafit/ddafit --seed 1 --cases 16 --free --solvers substep \
+        --out /tmp/free
 """
 import argparse
 import csv
@@ -74,6 +79,9 @@ def scene(c):
                 tops.insert(k_joint - i + 1, lower_start)
         return [r(p) for p in base[i:j + 1]] + [r(p) for p in reversed(tops)]
     blocks = []
+    if c["ground"] == "free":  # --free: the jointed blocks free, on a fixed bed 2 lengths deep that holds them at 60 deg
+        bed = [r(p) for p in base] + [r(add(p, (0.0, -2.0 * length))) for p in reversed(base)]
+        blocks.append({"name": "bed", "group": "bed", "material": "rock", "fixed": True, "polygon": bed})
     if c["ground"] == "whole":
         blocks.append({"name": "ground", "group": "base", "material": "rock", "fixed": True,
                        "polygon": piece(0, len(top) - 1)})
@@ -81,7 +89,7 @@ def scene(c):
         i = 0
         while i < len(top) - 1:
             j = i + 2 if c["ground"] == "spanning" and i == k_joint - 1 else i + 1
-            blocks.append({"name": f"ground_{i}", "group": "base", "material": "rock", "fixed": True,
+            blocks.append({"name": f"ground_{i}", "group": "base", "material": "rock", "fixed": c["ground"] != "free",
                            "polygon": piece(i, j)})
             i = j
     # In flight a thousandth of its length above the face: resting on a face it cannot stand on,
@@ -94,11 +102,15 @@ def scene(c):
                    "polygon": [r(rear), r(front), r(add(front, n1, height)), r(add(rear, n1, height))],
                    "velocity": [c["v0"] * t1[0], c["v0"] * t1[1]]})
     centre = add(add(rear, t1, 0.5 * length), n1, 0.5 * height)
-    return {"gravity": [0, -G], "time": {"duration": c["T"], "step": c["dt"], "integrator": c["solver"]},
-            "materials": {"rock": {"density": 2500, "young_modulus": 5e9, "poisson_ratio": 0.25}},
-            "interfaces": {"basal": {"friction_angle": c["phi"]}}, "blocks": blocks,
-            "contacts": [{"between": ["base", "slider"], "interface": "basal"}],
-            "measure": [{"name": "P", "at": r(centre)}], "output": {"interval": c["T"] / 8}}
+    s = {"gravity": [0, -G], "time": {"duration": c["T"], "step": c["dt"], "integrator": c["solver"]},
+         "materials": {"rock": {"density": 2500, "young_modulus": 5e9, "poisson_ratio": 0.25}},
+         "interfaces": {"basal": {"friction_angle": c["phi"]}}, "blocks": blocks,
+         "contacts": [{"between": ["base", "slider"], "interface": "basal"}],
+         "measure": [{"name": "P", "at": r(centre)}], "output": {"interval": c["T"] / 8}}
+    if c["ground"] == "free":  # the free blocks' joints and bed hold them
+        s["interfaces"]["bed"] = {"friction_angle": 60}
+        s["default_interface"] = "bed"
+    return s
 
 
 def run(ddafit, out, c):
@@ -115,7 +127,7 @@ def run(ddafit, out, c):
     return (float(last["ux"]), float(last["uy"]), math.hypot(float(last["vx"]), float(last["vy"]))), ""
 
 
-def cases(seed, count, steps):
+def cases(seed, count, steps, free=False, solvers=("implicit", "substep")):
     rng = random.Random(seed)
     for _ in range(count):
         a1 = rng.choice([20, 30, 40])
@@ -133,8 +145,8 @@ def cases(seed, count, steps):
         c["h"] = 0.0
         if steps:  # the step's height in slider lengths (> 0 down); the flush tolerance eta is 0.02 of them
             c["h"] = rng.choice([-0.05, -0.01, -0.002, 0.002, 0.01, 0.05, 0.2])
-        for solver in ["implicit", "substep"]:
-            yield [dict(c, solver=solver, ground=g) for g in ["whole", "jointed", "spanning"]]
+        for solver in solvers:
+            yield [dict(c, solver=solver, ground=g) for g in ["whole", "jointed", "free" if free else "spanning"]]
 
 
 def main():
@@ -145,8 +157,11 @@ def main():
     parser.add_argument("--out", default="kink-sweep")
     parser.add_argument("--jobs", type=int, default=2)
     parser.add_argument("--steps", action="store_true", help="a step at K on a straight face instead of a kink")
+    parser.add_argument("--free", action="store_true",
+                        help="the third ground is the jointed blocks free on a fixed bed, instead of spanning")
+    parser.add_argument("--solvers", nargs="+", default=["implicit", "substep"])
     args = parser.parse_args()
-    groups = list(cases(args.seed, args.cases, args.steps))
+    groups = list(cases(args.seed, args.cases, args.steps, args.free, args.solvers))
     flat = [c for g in groups for c in g]
     with ThreadPoolExecutor(args.jobs) as pool:
         results = list(pool.map(lambda c: run(args.ddafit, args.out, c), flat))
@@ -163,7 +178,8 @@ def main():
         offs = [math.hypot(r[0][0] - whole[0], r[0][1] - whole[1]) / travel for r in rr[1:]]
         flagged += max(offs) > 0.01
         print(f"{key}: travel {travel:.4f} m, speeds {' '.join(f'{r[0][2]:.3f}' for r in rr)} m/s | jointed "
-              f"{100 * offs[0]:.2f} %, spanning {100 * offs[1]:.2f} % {'<<<' if max(offs) > 0.01 else ''}", flush=True)
+              f"{100 * offs[0]:.2f} %, {group[2]['ground']} {100 * offs[1]:.2f} % {'<<<' if max(offs) > 0.01 else ''}",
+              flush=True)
     print(f"{len(groups)} cases, {flagged} more than 1 % apart")
 
 

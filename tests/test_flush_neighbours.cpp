@@ -140,11 +140,12 @@ TEST(FlushNeighbours, ABlockRestingOnOneBlockBesideTheNextOfAFlushSurfaceHasNoCo
 // more than eta above B's top, its base line, extended past its front, passing within eta of
 // B's far top corner. B's part near that line lies beside the base, but B's top runs under the
 // base: the two are face to face, no neighbours along one line, and the contact is B's top
-// against the base, two points, apart (one where the rear's gap is beyond the margin). Before model revision 2026-12-07.1 the manifold was
-// empty and a slider tumbling over a floor jointed every 1.3 of its lengths, read so by the
-// block under it, dropped into that block's joint with the next (scripts/kink_sweep.py, seed 4:
-// 0.10 m/s left of 5.9 m/s on the whole floor). Swept over tilts, sizes, how far the base line
-// passes above the corner, and both orders of the pair.
+// against the base, two points, apart (one where the rear's gap is beyond the margin). Before
+// model revision 2026-12-07.1 the manifold was empty, and a slider tumbling over a floor
+// jointed every 1.3 of its lengths, read so by the block under it, dropped into that block's
+// joint with the next (scripts/kink_sweep.py, seed 4: 0.10 m/s left of 5.9 m/s on the whole
+// floor). Swept over tilts, sizes, how far the base line passes above the corner, and both
+// orders of the pair.
 TEST(FlushNeighbours, ABlockTiltedOverAShortBlockTouchesItsTopFace) {
   for (const double tilt_degrees : {0.5, 1.6, 4.0, 8.0})
     for (const double s : {0.1, 1.0, 11.0})

@@ -90,7 +90,9 @@ struct ManifoldSettings {
 // the overlap is such a sliver: a polygon that lies along another face of the other (its
 // part within eta / 10 of that face's line reaches more than eta along it), or a pair
 // that overlaps deeper than eta / 4 along every axis of both, keeps its manifold (it rests
-// on, or has sunk into, a face nearly collinear with T). This is what lets a block slide
+// on, or has sunk into, a face nearly collinear with T); nor a polygon whose face most
+// nearly opposite to T runs under T for more than eta (face to face: a block tilted over a
+// shorter one, its line passing near that one's far corner; face_axes.hpp). This is what lets a block slide
 // across a joint between two blocks whose faces are flush (the slope surface, a row of
 // blocks): before it crosses, its leading corner sits just below the next block's corner
 // (by its own resting overlap), and the separating axis alone would take the joint face
@@ -112,7 +114,11 @@ struct ManifoldSettings {
 // several such faces, the one whose normal (from its polygon towards the other) agrees best
 // with the supports of the last step (support_a, support_b: a block resting on a surface
 // meets the next block of it through its face), while both corners lie within eta / 10 of
-// their lines; else the one the polygon lies closer to the line of.
+// their lines; else the one the polygon lies closer to the line of. Beside a flush face: the
+// incident face (the other polygon's most opposite) lying wholly beyond one end of the flush
+// face gives way to the polygon's next face from that end, where that one runs under the flush
+// face (a slider just past a convex kink of a fixed piece, whose face before the kink lies
+// beside the slider's base).
 //
 // Proud edges: when the two polygons overlap by no more than 2h, h = max(linear_slop,
 // proud_floor), along every axis (deepest separation in [-2h, 0]) and a face overlapped no
