@@ -41,7 +41,8 @@ namespace {
 
 // The ground: one concave polygon; fixed blocks jointed at every joint, the kink's among them; or
 // jointed, with one concave block spanning from the joint before the kink to the joint after it.
-enum class Ground { Whole, Jointed, Spanning };
+// Free: the jointed blocks free, on a fixed bed that holds them (a jointed slide's surface).
+enum class Ground { Whole, Jointed, Spanning, Free };
 
 struct Kink {
   double dip = 30.0;    // the upper face's dip, deg
@@ -118,9 +119,16 @@ Scene kink_scene(const Kink& c, Ground ground) {
   } else {
     for (int k = 0; k < last; ++k) {
       const int to = ground == Ground::Spanning && k == kink_joint - 1 ? k + 2 : k + 1;
-      s.blocks.push_back(block("ground_" + std::to_string(k), piece(k, to), true));
+      s.blocks.push_back(block("ground_" + std::to_string(k), piece(k, to), ground != Ground::Free, 0, "ground"));
       k = to - 1;
     }
+  }
+  if (ground == Ground::Free) {  // a bed two lengths deep under the blocks; 60 deg holds them on it and together
+    std::vector<Vec2> bed(base);
+    for (auto p = base.rbegin(); p != base.rend(); ++p) bed.push_back(*p - Vec2(0.0, 2.0 * depth));
+    s.blocks.push_back(block("bed", bed, true));
+    const int holds = add_interface(s, "holds", 60.0);
+    s.contact_rules = {{"bed", "ground", holds}, {"ground", "ground", holds}};
   }
   const Vec2 front = -c.start * c.length * t1 + kLift * c.length * n1;
   BlockInput slider = block("slider", box(front - c.length * t1, t1, n1, c.length, 0.6 * c.length), false);
@@ -208,6 +216,54 @@ TEST(GroundJoints, ASliderCrossesAKinkAsOnOneGroundWhereverItsJointsAreSubstep) 
 
 TEST(GroundJoints, ASliderCrossesAKinkAsOnOneGroundWhereverItsJointsAreImplicit) {
   expect_the_grounds_agree(Integrator::Implicit);
+}
+
+// A jointed slide's surface: the same ground's blocks free, held on a fixed bed (60 deg on their
+// joints and bed), the slider crossing them at the kink. A KNOWN DEFECT, disabled (docs/theory.md,
+// Known limits (p)): a pair of free blocks reads no flush face and judges "beside" on the whole
+// polygon, not on its part near the face's line, so at a kink the slider's front corner meets the
+// next free block's joint face (its separating axis) as a wall. Reading the rule for every pair
+// (revision 2026-12-07.2, withdrawn: Vajont section X reference overlapped 3.04 %) passed this test
+// (72 substep runs within 0.37 %, 32 implicit within 0.36 %). scripts/kink_sweep.py --free,
+// seed 1 (16 cases, substep): 15 run 26-85 % off the fixed ground; a 1 m slider at 3 m/s over a
+// 30 deg face bending 2 deg convex loses 39 %, 5 deg concave 66 %. Tolerance: 1 % of the travel,
+// as above (the free blocks give a little under the slider).
+// The class: the kinks above; sliders of 0.1 (substep only: Known limits (f)), 1 and 10 m from
+// rest and at 3 and 10 m/s (the implicit solver from rest and at 3 m/s); 5 ms x 4 and 10 ms x 3.
+void expect_free_blocks_cross_as_fixed(Integrator integrator) {
+  constexpr double kAgreement = 0.01;
+  double worst = 0.0;
+  std::string worst_case;
+  int runs = 0;
+  for (const auto& [dip, kink] : std::vector<std::pair<double, double>>{{30, 10}, {30, -10}, {20, 5}, {20, -5}})
+    for (const double length : {0.1, 1.0, 10.0})
+      for (const double speed : {0.0, 3.0, 10.0}) {
+        if (integrator == Integrator::Implicit && (length < 1.0 || speed > 3.0)) continue;
+        for (const auto& [step, substeps] : std::vector<std::pair<double, int>>{{0.005, 4}, {0.01, 3}}) {
+          Kink c{dip, kink, length, speed, step, substeps, 2.0, integrator};
+          if (dip == 20.0 && speed > 0.0) c.friction = 20.0;  // held at its speed to the kink
+          const std::string label = label_of(c) + ", free blocks";
+          const SimulationResult whole = simulate(kink_scene(c, Ground::Whole));
+          const SimulationResult free = simulate(kink_scene(c, Ground::Free));
+          ASSERT_EQ(whole.summary.status, RunStatus::Completed) << label << ", whole: " << whole.summary.message;
+          ASSERT_EQ(free.summary.status, RunStatus::Completed) << label << ": " << free.summary.message;
+          const Vec2 on_whole = whole.history.back().displacement;
+          const double off = (free.history.back().displacement - on_whole).norm() / on_whole.norm();
+          EXPECT_LT(off, kAgreement) << label << ": " << off * 100 << " % of the travel from the fixed ground's";
+          if (off > worst) worst = off, worst_case = label;
+          ++runs;
+        }
+      }
+  std::printf("[measured] %d kinks of free blocks (%s): at most %.2g of the travel from the fixed ground (%s)\n", runs,
+              to_string(integrator), worst, worst_case.c_str());
+}
+
+TEST(GroundJoints, DISABLED_ASliderCrossesAKinkOfFreeBlocksAsOfAFixedGroundSubstep) {
+  expect_free_blocks_cross_as_fixed(Integrator::Substep);
+}
+
+TEST(GroundJoints, DISABLED_ASliderCrossesAKinkOfFreeBlocksAsOfAFixedGroundImplicit) {
+  expect_free_blocks_cross_as_fixed(Integrator::Implicit);
 }
 
 // A ground given by a surface digitised every half metre: one concave block of 30 deg, its top 400
