@@ -79,7 +79,7 @@ def scene(c):
                 tops.insert(k_joint - i + 1, lower_start)
         return [r(p) for p in base[i:j + 1]] + [r(p) for p in reversed(tops)]
     blocks = []
-    if c["ground"] == "free":  # --free: the jointed blocks free, on a fixed bed 2 lengths deep that holds them at 60 deg
+    if c["ground"] == "free":  # --free: the jointed blocks free on a fixed bed, 2 lengths deep, held at 60 deg
         bed = [r(p) for p in base] + [r(add(p, (0.0, -2.0 * length))) for p in reversed(base)]
         blocks.append({"name": "bed", "group": "bed", "material": "rock", "fixed": True, "polygon": bed})
     if c["ground"] == "whole":
