@@ -31,6 +31,20 @@ Face grow_face(const Shape& p, int edge, double flat) {
   return f;
 }
 
+Incident incident_edge(const Shape& inc, std::span<const char> solid, const Vec2& normal, double tiny) {
+  Incident best;
+  for (int j = 0; j < inc.n; ++j) {
+    if (!solid.empty() && !solid[static_cast<size_t>(j)]) continue;
+    const Vec2 edge = inc.at(j + 1) - inc.at(j);
+    const double length = edge.norm();
+    if (!(length > tiny)) continue;
+    const double d = normal.dot(outward(edge)) / length;
+    if (d < best.facing) best = {j, d};
+  }
+  return best;
+}
+
+
 namespace {
 
 // A reflex corner of q's block within eta of the face's line, on either side, and within
@@ -57,19 +71,10 @@ bool hollow_near(const Shape& q, std::span<const char> q_reflex, const Vec2& p0,
 // (the face before a convex kink, under a slider that has just passed the kink), they are
 // neighbours, whatever q's next face does under the face.
 bool face_to_face(const Shape& q, std::span<const char> q_solid, const Vec2& normal, const Vec2& tangent,
-                  const Vec2& p0, double from, double to, double eta) {
-  int most = -1;
-  double facing = 0.0;
-  for (int k = 0; k < q.n; ++k) {
-    if (!q_solid.empty() && !q_solid[static_cast<size_t>(k)]) continue;  // a cut is no face (incident_edge)
-    const Vec2 edge = q.at(k + 1) - q.at(k);
-    const double length = edge.norm();
-    if (!(length > 0.0)) continue;
-    const double f = outward(edge).dot(normal) / length;
-    if (f < facing) most = k, facing = f;
-  }
-  if (most < 0) return false;
-  const double u0 = tangent.dot(q.at(most) - p0), u1 = tangent.dot(q.at(most + 1) - p0);
+                  const Vec2& p0, double from, double to, double eta, double tiny) {
+  const Incident most = incident_edge(q, q_solid, normal, tiny);
+  if (most.edge < 0 || !(most.facing < 0.0)) return false;
+  const double u0 = tangent.dot(q.at(most.edge) - p0), u1 = tangent.dot(q.at(most.edge + 1) - p0);
   return std::min(to, std::max(u0, u1)) - std::max(from, std::min(u0, u1)) > eta;
 }
 
@@ -105,7 +110,7 @@ Axis best_axis(const Shape& p, std::span<const char> solid, std::span<const char
       const int end = near.hi <= from ? f.first : f.last;
       if (along <= 0.0 && (reflex.empty() || !reflex[static_cast<size_t>(end)]) &&
           !hollow_near(q, q_reflex, p0, normal, tangent, from, to, eta, apart) &&
-          !(limits.flush_faces && face_to_face(q, q_solid, normal, tangent, p0, from, to, eta)))
+          !(limits.flush_faces && face_to_face(q, q_solid, normal, tangent, p0, from, to, eta, tiny)))
         best.flush_beside = true;
       // Close to the line only: a joint meeting the surface at 30 deg has the slider's
       // bottom within eta of its line for 2 eta, which is no riding along it.

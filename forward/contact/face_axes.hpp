@@ -83,6 +83,17 @@ inline constexpr double kRideDepth = 0.1;
 inline constexpr double kSliverDepth = 0.25;
 bool flush_better(double support, double gap, double than_support, double than_gap, double eta, double slop);
 
+// The edge of `inc` facing the direction `normal` (unit) the most, among its solid edges:
+// the incident face. `facing` is the cosine between its outward normal and `normal`;
+// -1 is face to face. A convex polygon always has an edge with facing < 0; only a piece
+// whose edges turned that way are all cuts can give facing > 0.
+struct Incident {
+  int edge = -1;
+  double facing = kInfinity;
+};
+
+Incident incident_edge(const Shape& inc, std::span<const char> solid, const Vec2& normal, double tiny);
+
 // A face: the run of edges from vertex `first` to vertex `last` (counter-clockwise).
 struct Face {
   int first = 0;

@@ -17,28 +17,6 @@ constexpr double kParallel = 1e-10;
 // proud_floor) deep: a corner resting up to the slop deep that meets an edge up to h proud.
 constexpr double kProudWindow = 2.0;
 
-// The edge of `inc` facing the direction `normal` (unit) the most, among its solid edges:
-// the incident face. `facing` is the cosine between its outward normal and `normal`;
-// -1 is face to face. A convex polygon always has an edge with facing < 0; only a piece
-// whose edges turned that way are all cuts can give facing > 0.
-struct Incident {
-  int edge = -1;
-  double facing = kInfinity;
-};
-
-Incident incident_edge(const Shape& inc, std::span<const char> solid, const Vec2& normal, double tiny) {
-  Incident best;
-  for (int j = 0; j < inc.n; ++j) {
-    if (!solid.empty() && !solid[static_cast<size_t>(j)]) continue;
-    const Vec2 edge = inc.at(j + 1) - inc.at(j);
-    const double length = edge.norm();
-    if (!(length > tiny)) continue;
-    const double d = normal.dot(outward(edge)) / length;
-    if (d < best.facing) best = {j, d};
-  }
-  return best;
-}
-
 // Unit outward normal of the reference face grown from edge `edge` of `ref`.
 Vec2 face_normal(const Shape& ref, int edge, double flat) {
   const Face f = grow_face(ref, edge, flat);
@@ -158,7 +136,7 @@ Incident under_flush_face(const Shape& ref, int ref_edge, const Shape& inc, std:
   // The incident face runs against the tangent: from incf.first (far along) to incf.last.
   int next = -1;
   if (u(incf.first) <= 0.0) next = (incf.first + inc.n - 1) % inc.n;  // beside the first end
-  if (u(incf.last) >= length) next = incf.last % inc.n;                // beside the last end
+  if (u(incf.last) >= length) next = incf.last;                         // beside the last end
   if (next < 0 || (!solid.empty() && !solid[static_cast<size_t>(next)])) return incident;
   const Vec2 edge = inc.at(next + 1) - inc.at(next);
   const double facing = normal.dot(outward(edge)) / edge.norm();
