@@ -19,7 +19,8 @@ const Vec2 kFar(2400.0, 700.0);  // Vajont-like coordinates
 constexpr double kDegree = M_PI / 180.0;
 constexpr double kFlushRatio = 0.02;  // collide.hpp's default: eta = 2 % of the block's size
 
-// flush_faces: as collide() sets it for a pair with a fixed block; off between free blocks.
+// flush_faces: as collide() sets it for every pair (since model revision 2026-12-07.3; until
+// then for pairs with a fixed block only); off, the whole polygon must lie beside a face.
 ManifoldSettings flush_settings(double size, bool flush_faces = true) {
   ManifoldSettings m;
   m.flush_faces = flush_faces;
@@ -67,16 +68,16 @@ TEST(FlushNeighbours, ABlockOnAFaceBesideASlightKinkOfItsPieceTouchesTheFace) {
       for (const double x0 : {0.01, 0.05})
         for (const double overlap : {1e-4, 0.1 * kFlushRatio, 0.5 * kFlushRatio})
           for (const bool on_n : {true, false})
-            for (const bool fixed_piece : {true, false}) {
+            for (const bool flush_faces : {true, false}) {
               const double kink = kink_degrees * kDegree, d = overlap * s;
               const std::vector<Vec2> piece = kinked_piece(kink);
               // On N: along its tangent from K. On T: the square's far end x0 s short of K.
               const Vec2 t = on_n ? Vec2(std::cos(kink), -std::sin(kink)) : Vec2(1.0, 0.0);
               const std::vector<Vec2> block = square_on(kFar, t, on_n ? x0 * s : -(1.0 + x0) * s, s, d);
-              const Manifold m = collide_polygons(piece, block, flush_settings(s, fixed_piece));
+              const Manifold m = collide_polygons(piece, block, flush_settings(s, flush_faces));
               SCOPED_TRACE(testing::Message() << "kink " << kink_degrees << " deg, size " << s << " m, x0 " << x0
                                               << ", overlap " << overlap << ", on " << (on_n ? "N" : "T")
-                                              << (fixed_piece ? ", fixed piece" : ", free piece"));
+                                              << (flush_faces ? "" : ", flush faces off"));
               ASSERT_EQ(m.point_count, 2);
               // The face's outward normal, from the piece towards the block.
               EXPECT_LT((m.normal - Vec2(-t.y(), t.x())).norm(), 1e-9);
@@ -100,10 +101,10 @@ TEST(FlushNeighbours, ABlockSunkIntoTheFaceBeyondAFaceEndIsSeen) {
         const std::vector<Vec2> piece = {kFar + Vec2(-10.0, -40.0), kFar + Vec2(down.x(), -40.0), kFar + down, kFar,
                                          kFar + Vec2(-10.0, 0.0)};
         const std::vector<Vec2> block = square_on(kFar, Vec2(1.0, 0.0), 0.0, s, depth);
-        for (const bool fixed_piece : {true, false}) {
+        for (const bool flush_faces : {true, false}) {
           SCOPED_TRACE(testing::Message() << "face at " << alpha_degrees << " deg, size " << s << " m, " << h
-                                          << " eta below T's line" << (fixed_piece ? ", fixed" : ", free"));
-          const Manifold m = collide_polygons(piece, block, flush_settings(s, fixed_piece));
+                                          << " eta below T's line" << (flush_faces ? "" : ", flush faces off"));
+          const Manifold m = collide_polygons(piece, block, flush_settings(s, flush_faces));
           ASSERT_GE(m.point_count, 1);
           EXPECT_GE(deepest(m), -depth - 1e-9 * s);
           EXPECT_LE(deepest(m), -depth * std::cos(alpha) + 1e-9 * s);
@@ -129,9 +130,9 @@ TEST(FlushNeighbours, ABlockRestingOnOneBlockBesideTheNextOfAFlushSurfaceHasNoCo
               square_on(kFar, Vec2(1.0, 0.0), -(1.0 + short_of_joint) * s, s, overlap * s);
           SCOPED_TRACE(testing::Message() << "joint " << psi_degrees << " deg, size " << s << " m, overlap "
                                           << overlap << ", short " << short_of_joint);
-          for (const bool fixed_b : {true, false}) {
-            EXPECT_EQ(collide_polygons(b, slider, flush_settings(s, fixed_b)).point_count, 0);
-            EXPECT_EQ(collide_polygons(slider, b, flush_settings(s, fixed_b)).point_count, 0);
+          for (const bool flush_faces : {true, false}) {
+            EXPECT_EQ(collide_polygons(b, slider, flush_settings(s, flush_faces)).point_count, 0);
+            EXPECT_EQ(collide_polygons(slider, b, flush_settings(s, flush_faces)).point_count, 0);
           }
         }
 }
@@ -231,12 +232,12 @@ ProudEdge proud_edge(double slope_degrees, double w, double proud, double crosse
   return e;
 }
 
-// As collide() sets a pair of free blocks (flush faces off), with the slop of a run whose
-// largest move per step is 5 % of the block ahead (kSlopRatio 1e-3 of it), and both blocks
-// held up by the slope in the last step.
+// As collide() sets a pair of free blocks (flush faces on, as for every pair since model
+// revision 2026-12-07.3), with the slop of a run whose largest move per step is 5 % of the block
+// ahead (kSlopRatio 1e-3 of it), and both blocks held up by the slope in the last step.
 ManifoldSettings free_pair(double w, const Vec2& up) {
   ManifoldSettings m;
-  m.flush_faces = false;
+  m.flush_faces = true;
   m.max_distance = 0.05 * w;
   m.linear_slop = 5e-5 * w;
   m.flush_tolerance = 0.02 * w;
@@ -306,13 +307,17 @@ TEST(ProudEdges, ACornerRestingDeepMeetsAnEdgeProudOfItsSupportsThroughItsOwnFac
 }
 
 TEST(ProudEdges, AStepHigherThanTheWindowStopsTheCorner) {
-  // The same corner, resting on the line of the blocks behind, against an edge 2.5-100 times
+  // The same corner, resting on the line of the blocks behind, against an edge 60-400 times
   // the slop high: a real step, higher than the rule's window (twice the slop: a corner resting
-  // up to the slop deep meeting an edge up to the slop proud). Its face is the contact (normal
-  // along the slope, back up it), and the depth is how far the corner crossed.
+  // up to the slop deep meeting an edge up to the slop proud) and than the reach of a flush
+  // face (eta / 10 = 40 slop here: a corner within it of the line of the edge's face lies
+  // against that face, which then holds it, as on a fixed surface, manifold.hpp; between free
+  // blocks too since model revision 2026-12-07.3, when this sweep's steps of 2.5 and 10 slop
+  // became such edges). Its face is the contact (normal along the slope, back up it), and the
+  // depth is how far the corner crossed.
   for (const double slope : {0.0, 15.0, 35.0})
     for (const double w : {0.15, 1.0, 8.2})
-      for (const double proud_share : {2.5, 10.0, 100.0})
+      for (const double proud_share : {60.0, 100.0, 400.0})
         for (const bool slider_first : {true, false}) {
           const double slop = 5e-5 * w, proud = proud_share * slop, crossed = 0.5 * slop;
           const ProudEdge e = proud_edge(slope, w, proud, crossed);

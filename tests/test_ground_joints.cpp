@@ -219,15 +219,13 @@ TEST(GroundJoints, ASliderCrossesAKinkAsOnOneGroundWhereverItsJointsAreImplicit)
 }
 
 // A jointed slide's surface: the same ground's blocks free, held on a fixed bed (60 deg on their
-// joints and bed), the slider crossing them at the kink. A KNOWN DEFECT, disabled (docs/theory.md,
-// Known limits (p)): a pair of free blocks reads no flush face and judges "beside" on the whole
-// polygon, not on its part near the face's line, so at a kink the slider's front corner meets the
-// next free block's joint face (its separating axis) as a wall. Reading the rule for every pair
-// (revision 2026-12-07.2, withdrawn: Vajont section X reference overlapped 3.04 %) passed this test
-// (72 substep runs within 0.37 %, 32 implicit within 0.36 %). scripts/kink_sweep.py --free,
-// seed 1 (16 cases, substep): 15 run 26-85 % off the fixed ground; a 1 m slider at 3 m/s over a
-// 30 deg face bending 2 deg convex loses 39 %, 5 deg concave 66 %. Tolerance: 1 % of the travel,
-// as above (the free blocks give a little under the slider).
+// joints and bed), the slider crossing them at the kink. Until model revision 2026-12-07.3 a pair
+// of free blocks read no flush face and judged "beside" on the whole polygon, not on its part near
+// the face's line: at a concave kink the slider's front corner met the next free block's joint face
+// (its separating axis) as a wall, and past a convex kink the face before the kink put a point
+// behind it. scripts/kink_sweep.py --free, seed 1 (16 cases, substep): 15 ran 26-85 % off the fixed
+// ground; a 1 m slider at 3 m/s over a 30 deg face bending 2 deg convex lost 39 %, 5 deg concave
+// 66 %. Tolerance: 1 % of the travel, as above (the free blocks give a little under the slider).
 // The class: the kinks above; sliders of 0.1 (substep only: Known limits (f)), 1 and 10 m from
 // rest and at 3 and 10 m/s (the implicit solver from rest and at 3 m/s); 5 ms x 4 and 10 ms x 3.
 void expect_free_blocks_cross_as_fixed(Integrator integrator) {
@@ -258,11 +256,11 @@ void expect_free_blocks_cross_as_fixed(Integrator integrator) {
               to_string(integrator), worst, worst_case.c_str());
 }
 
-TEST(GroundJoints, DISABLED_ASliderCrossesAKinkOfFreeBlocksAsOfAFixedGroundSubstep) {
+TEST(GroundJoints, ASliderCrossesAKinkOfFreeBlocksAsOfAFixedGroundSubstep) {
   expect_free_blocks_cross_as_fixed(Integrator::Substep);
 }
 
-TEST(GroundJoints, DISABLED_ASliderCrossesAKinkOfFreeBlocksAsOfAFixedGroundImplicit) {
+TEST(GroundJoints, ASliderCrossesAKinkOfFreeBlocksAsOfAFixedGroundImplicit) {
   expect_free_blocks_cross_as_fixed(Integrator::Implicit);
 }
 

@@ -52,7 +52,16 @@ class Decomposer {
       convex = !reflex(order[(k + n - 1) % n], order[k], order[(k + 1) % n]);
     if (convex) return {order};
 
-    // Straight vertices would give zero-area ears and zero-length diagonals; take them
+    // Cuts from the reflex corners; straight vertices may end a cut (a notch under a vertex
+    // of a straight top is cut to that vertex, not to the top's far corner).
+    std::vector<std::vector<int>> pieces;
+    if (split(order, pieces)) {
+      merge(pieces);
+      return pieces;
+    }
+
+    // Only round-off on a nearly degenerate polygon hides every cut from a reflex corner:
+    // clip ears instead. Straight vertices would give zero-area ears and zero-length diagonals; take them
     // out one at a time (each test against the current neighbours, so a short edge at a
     // real corner is not swallowed with its neighbour) and put them back at the end.
     std::vector<int> chain = order;
@@ -73,7 +82,7 @@ class Decomposer {
       chain_area += turn(Vec2::Zero(), p_[chain[k]], p_[chain[(k + 1) % chain.size()]]);
     if (chain.size() < 3 || !(chain_area > flat_ * size_)) return {};
 
-    std::vector<std::vector<int>> pieces = triangulate(chain);
+    pieces = triangulate(chain);
     merge(pieces);
     return restore_straight(pieces, order, chain);
   }
@@ -86,6 +95,81 @@ class Decomposer {
   }
   bool straight(int a, int b, int c) const {
     return std::abs(turn(p_[a], p_[b], p_[c])) <= flat_ * (p_[c] - p_[a]).norm();
+  }
+
+  // Interior angle at x of a counter-clockwise walk prev -> x -> next, in [0, 2 pi).
+  double interior(int prev, int x, int next) const {
+    const Vec2 u = p_[next] - p_[x], w = p_[prev] - p_[x];
+    const double a = std::atan2(u.x() * w.y() - u.y() * w.x(), u.dot(w));
+    return a < 0.0 ? a + 2.0 * M_PI : a;
+  }
+
+  // Whether segment r-v touches the edge q0-q1 (closed: touching counts).
+  bool touches(int r, int v, int q0, int q1) const {
+    const double t0 = turn(p_[r], p_[v], p_[q0]), t1 = turn(p_[r], p_[v], p_[q1]);
+    const double t2 = turn(p_[q0], p_[q1], p_[r]), t3 = turn(p_[q0], p_[q1], p_[v]);
+    if ((t0 > 0.0 && t1 > 0.0) || (t0 < 0.0 && t1 < 0.0) || (t2 > 0.0 && t3 > 0.0) || (t2 < 0.0 && t3 < 0.0))
+      return false;
+    const Vec2 lo = p_[r].cwiseMin(p_[v]), hi = p_[r].cwiseMax(p_[v]);  // collinear: boxes must meet
+    const Vec2 qlo = p_[q0].cwiseMin(p_[q1]), qhi = p_[q0].cwiseMax(p_[q1]);
+    return (lo.array() <= qhi.array()).all() && (qlo.array() <= hi.array()).all();
+  }
+
+  // Splits a counter-clockwise walk at diagonals from its reflex corners until every piece
+  // is convex. Each cut runs from the most reflex corner to the vertex that leaves the
+  // largest smallest angle at the cut's two ends, preferring cuts that leave that corner
+  // convex on both sides. Hertel-Mehlhorn on an ear-clipping triangulation picks its cuts
+  // by the order of the ears instead, and on Vajont section X it cut a block along its top
+  // face from a notch 3 cm below it: an 8 m piece 3 cm thick whose only solid face was that
+  // top, so a block whose tip sat in the notch read itself 4 cm deep in it, was pushed into
+  // the block's other piece and overlapped it by 3 % of its size (model revision 2026-12-07.3).
+  bool split(const std::vector<int>& c, std::vector<std::vector<int>>& pieces) const {
+    const size_t m = c.size();
+    std::vector<std::pair<double, size_t>> corners;  // (interior angle, position), reflex only
+    for (size_t i = 0; i < m; ++i)
+      if (reflex(c[(i + m - 1) % m], c[i], c[(i + 1) % m]))
+        corners.push_back({interior(c[(i + m - 1) % m], c[i], c[(i + 1) % m]), i});
+    if (corners.empty()) {
+      pieces.push_back(c);
+      return true;
+    }
+    std::sort(corners.rbegin(), corners.rend());
+    for (const auto& [angle_r, i] : corners) {
+      const int r = c[i], r_prev = c[(i + m - 1) % m], r_next = c[(i + 1) % m];
+      double best_score = -1.0;
+      size_t best = m;
+      for (size_t j = 0; j < m; ++j) {
+        if (j == i || j == (i + 1) % m || (j + 1) % m == i) continue;
+        const int v = c[j], v_prev = c[(j + m - 1) % m], v_next = c[(j + 1) % m];
+        const double r1 = interior(v, r, r_next), r2 = interior(r_prev, r, v);
+        const double v1 = interior(v_prev, v, r), v2 = interior(r, v, v_next);
+        // Inside both corners' cones: the two parts of each corner add up to the whole.
+        const double angle_v = interior(v_prev, v, v_next);
+        if (!(r1 > 0.0 && r2 > 0.0 && std::abs(r1 + r2 - angle_r) < 1e-9)) continue;
+        if (!(v1 > 0.0 && v2 > 0.0 && std::abs(v1 + v2 - angle_v) < 1e-9)) continue;
+        bool clear = true;
+        for (size_t k = 0; k < m && clear; ++k) {
+          const int q0 = c[k], q1 = c[(k + 1) % m];
+          if (q0 != r && q1 != r && q0 != v && q1 != v) clear = !touches(r, v, q0, q1);
+        }
+        if (!clear) continue;
+        const bool resolves = r1 <= M_PI && r2 <= M_PI;
+        const double score = std::min({r1, r2, v1, v2}) * (resolves ? 1.0 : 0.5);
+        if (score > best_score) best_score = score, best = j;
+      }
+      if (best == m) continue;  // no cut from this corner (round-off): try the next one
+      std::vector<int> one, two;
+      for (size_t k = i;; k = (k + 1) % m) {
+        one.push_back(c[k]);
+        if (k == best) break;
+      }
+      for (size_t k = best;; k = (k + 1) % m) {
+        two.push_back(c[k]);
+        if (k == i) break;
+      }
+      return split(one, pieces) && split(two, pieces);
+    }
+    return false;
   }
 
   // Closed triangle test: a vertex on the would-be diagonal must block the ear too,
