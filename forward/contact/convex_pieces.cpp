@@ -61,9 +61,10 @@ class Decomposer {
     }
 
     // Only round-off on a nearly degenerate polygon hides every cut from a reflex corner:
-    // clip ears instead. Straight vertices would give zero-area ears and zero-length diagonals; take them
-    // out one at a time (each test against the current neighbours, so a short edge at a
-    // real corner is not swallowed with its neighbour) and put them back at the end.
+    // clip ears instead. Straight vertices would give zero-area ears and zero-length
+    // diagonals; take them out one at a time (each test against the current neighbours, so
+    // a short edge at a real corner is not swallowed with its neighbour) and put them back
+    // at the end.
     std::vector<int> chain = order;
     for (bool removed = true; removed && chain.size() > 3;) {
       removed = false;
