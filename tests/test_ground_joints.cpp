@@ -176,6 +176,12 @@ std::vector<Kink> class_of(Integrator integrator) {
 
 // The jointed and the spanning grounds' final positions of the slider, off the whole ground's,
 // as shares of its travel there (the larger of the two).
+// How far a ground's run ends from the whole ground's, as a share of the travel there.
+double off_the_whole(const SimulationResult& other, const SimulationResult& whole) {
+  const Vec2 on_whole = whole.history.back().displacement;
+  return (other.history.back().displacement - on_whole).norm() / on_whole.norm();
+}
+
 double grounds_apart(const Kink& c, std::string& worse) {
   const std::string label = label_of(c);
   const SimulationResult whole = simulate(kink_scene(c, Ground::Whole));
@@ -186,10 +192,9 @@ double grounds_apart(const Kink& c, std::string& worse) {
   expect_contact_physics(jointed, audit, c.integrator, label + ", jointed");
   const SimulationResult spanning = simulate(kink_scene(c, Ground::Spanning));
   EXPECT_EQ(spanning.summary.status, RunStatus::Completed) << label << ", spanning: " << spanning.summary.message;
-  const Vec2 on_whole = whole.history.back().displacement;
   double most = 0.0;
   for (const auto& [other, name] : {std::pair{&jointed, "jointed"}, std::pair{&spanning, "spanning"}}) {
-    const double off = (other->history.back().displacement - on_whole).norm() / on_whole.norm();
+    const double off = off_the_whole(*other, whole);
     if (off > most) most = off, worse = label + ", " + name + " ground";
   }
   return most;
@@ -245,8 +250,7 @@ void expect_free_blocks_cross_as_fixed(Integrator integrator) {
           const SimulationResult free = simulate(kink_scene(c, Ground::Free));
           ASSERT_EQ(whole.summary.status, RunStatus::Completed) << label << ", whole: " << whole.summary.message;
           ASSERT_EQ(free.summary.status, RunStatus::Completed) << label << ": " << free.summary.message;
-          const Vec2 on_whole = whole.history.back().displacement;
-          const double off = (free.history.back().displacement - on_whole).norm() / on_whole.norm();
+          const double off = off_the_whole(free, whole);
           EXPECT_LT(off, kAgreement) << label << ": " << off * 100 << " % of the travel from the fixed ground's";
           if (off > worst) worst = off, worst_case = label;
           ++runs;

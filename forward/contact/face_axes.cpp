@@ -44,7 +44,6 @@ Incident incident_edge(const Shape& inc, std::span<const char> solid, const Vec2
   return best;
 }
 
-
 namespace {
 
 // A reflex corner of q's block within eta of the face's line, on either side, and within
