@@ -174,8 +174,6 @@ std::vector<Kink> class_of(Integrator integrator) {
   return cases;
 }
 
-// The jointed and the spanning grounds' final positions of the slider, off the whole ground's,
-// as shares of its travel there (the larger of the two).
 // How far a ground's run ends from the whole ground's, as a share of the travel there.
 double off_the_whole(const SimulationResult& other, const SimulationResult& whole) {
   const Vec2 on_whole = whole.history.back().displacement;
@@ -266,6 +264,76 @@ TEST(GroundJoints, ASliderCrossesAKinkOfFreeBlocksAsOfAFixedGroundSubstep) {
 
 TEST(GroundJoints, ASliderCrossesAKinkOfFreeBlocksAsOfAFixedGroundImplicit) {
   expect_free_blocks_cross_as_fixed(Integrator::Implicit);
+}
+
+// A slider coming down onto a valley floor of free blocks (a 30, 35 or 40 deg face turning 20 to 40
+// deg concave), as onto a fixed one. Found 2026-12-07 by scripts/kink_sweep.py --free, seed 1: a
+// 30 x 9 m slider arriving at 21.6 m/s at a 30 deg face's foot on a level floor of free blocks was
+// thrown back up the face at 4.7 m/s (the fixed ground's turned it along the floor at 17.9 m/s) and
+// ran 28.7 % short. Its front corner slid along its base's line into the corner of the floor's
+// first block: the pair was apart along the slider's front face by 10 cm, and the speculative
+// contact of that face, its normal along the slide, stopped the slide within the step. The floor's
+// face that turns up at that corner is now the contact (manifold.hpp, "Kink corners"). Without it,
+// of this class's runs from 0.2, 2 and 2.3 lengths, 46 of 108 on the substep solver ran more than 1 %
+// of the travel apart (up to 68 %), and 11 of 24 on the implicit one (up to 34 %). Tolerance: 2 %
+// of the travel, the 1 % above doubled for the corner's blow on the floor: at a kink of 30 deg the
+// slider's corner strikes the floor's first block, which a free block takes in part (a 1 m slider
+// arriving at 10.6 m/s keeps 8.25 m/s on the free floor against 8.05 on the fixed one, and the two
+// then slow alike: 1.4 % of the travel).
+// The class: sliders of 1 and 30 m (a Vajont block), from rest and at 10 and 20 m/s, from `starts`
+// lengths before the kink, at 5 ms x 4 and 10 ms x 3, moving up to 0.13 lengths a step (the 30 m
+// slider's 3.8 m); the implicit solver from rest and at 10 m/s, 10 ms x 3.
+void expect_free_floors_turn_a_slider_as_fixed(Integrator integrator, const std::vector<double>& starts) {
+  constexpr double kAgreement = 0.02;
+  double worst = 0.0;
+  std::string worst_case;
+  int runs = 0;
+  const bool implicit = integrator == Integrator::Implicit;
+  for (const auto& [dip, kink] : std::vector<std::pair<double, double>>{{30, 30}, {40, 40}, {35, 20}})
+    for (const double length : {1.0, 30.0})
+      for (const double speed : {0.0, 10.0, 20.0})
+        for (const double start : starts)
+          for (const auto& [step, substeps] : std::vector<std::pair<double, int>>{{0.005, 4}, {0.01, 3}}) {
+            if (implicit && (speed > 10.0 || step < 0.01)) continue;
+            Kink c{dip, kink, length, speed, step, substeps, start, integrator};
+            c.move = 0.13;
+            const std::string label = label_of(c) + ", free blocks";
+            const SimulationResult whole = simulate(kink_scene(c, Ground::Whole));
+            const SimulationResult free = simulate(kink_scene(c, Ground::Free));
+            ASSERT_EQ(whole.summary.status, RunStatus::Completed) << label << ", whole: " << whole.summary.message;
+            ASSERT_EQ(free.summary.status, RunStatus::Completed) << label << ": " << free.summary.message;
+            const double off = off_the_whole(free, whole);
+            EXPECT_LT(off, kAgreement) << label << ": " << off * 100 << " % of the travel from the fixed ground's";
+            if (off > worst) worst = off, worst_case = label;
+            ++runs;
+          }
+  std::printf("[measured] %d sliders onto floors of free blocks (%s): at most %.2g of the travel from the fixed "
+              "ground (%s)\n", runs, to_string(integrator), worst, worst_case.c_str());
+}
+
+// Arriving: from 2 and 2.3 lengths before the kink (where the steps fall on the approach).
+TEST(GroundJoints, ASliderComesDownOntoAFloorOfFreeBlocksAsOntoAFixedOneSubstep) {
+  expect_free_floors_turn_a_slider_as_fixed(Integrator::Substep, {2.0, 2.3});
+}
+
+TEST(GroundJoints, ASliderComesDownOntoAFloorOfFreeBlocksAsOntoAFixedOneImplicit) {
+  expect_free_floors_turn_a_slider_as_fixed(Integrator::Implicit, {2.0});
+}
+
+// Known defect (docs/theory.md, Known limits (p)): set down a fifth of its length before the kink,
+// the slider lands on the face and straddles the kink at once, its base tilted over the face, its
+// rear corner sliding down the face. When that corner comes to a joint of the face, the next free
+// block's corner lies within eta / 10 under the base, near the corner: the base and the next
+// block's top are both flush faces of the pair, and the slider's support (half face, half floor)
+// ranks its base first. That base's speculative point at the joint's corner kicked the 30 m slider
+// at 10 m/s up by 2 m/s at 2.1 s, and it ran 16 % short. 7 of 36 runs on the substep solver and 3 of
+// 12 on the implicit one are over the bound (2.3-16 %); the rest of the class is within it.
+TEST(GroundJoints, DISABLED_ASliderSetDownAtTheFootOfAFaceOverAFloorOfFreeBlocksRunsAsOnAFixedOneSubstep) {
+  expect_free_floors_turn_a_slider_as_fixed(Integrator::Substep, {0.2});
+}
+
+TEST(GroundJoints, DISABLED_ASliderSetDownAtTheFootOfAFaceOverAFloorOfFreeBlocksRunsAsOnAFixedOneImplicit) {
+  expect_free_floors_turn_a_slider_as_fixed(Integrator::Implicit, {0.2});
 }
 
 // A ground given by a surface digitised every half metre: one concave block of 30 deg, its top 400

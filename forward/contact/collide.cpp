@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "forward/contact/contact_law.hpp"
+#include "forward/contact/face_axes.hpp"
 #include "forward/contact/manifold.hpp"
 #include "forward/contact/slip_history.hpp"
 #include "forward/parallel.hpp"
@@ -189,9 +190,9 @@ void drop_shared_corners(const BlockSystem& s, std::vector<ContactManifold>& man
 // either: the implicit solver's loads swing by half within a step's open-close iterations,
 // and a thin block under a heavy one (3 x 0.375 m under 3 x 1.125 m on a free row, 35 deg)
 // was then pushed down on balance, took a joint face and fell 19 % behind seed Eq. 4.
+constexpr double kUpward = 0.1;  // a normal pushes a block up when it points up by more than this
 std::vector<Vec2> supports(const BlockSystem& s, const std::vector<ContactManifold>& previous, double slop,
                            const Vec2& gravity) {
-  constexpr double kUpward = 0.1;
   const double g = gravity.norm();
   const Vec2 up = g > 0.0 ? Vec2(-gravity / g) : Vec2::Zero();
   std::vector<Vec2> held(s.blocks.size(), Vec2::Zero()), all(s.blocks.size(), Vec2::Zero());
@@ -212,6 +213,46 @@ std::vector<Vec2> supports(const BlockSystem& s, const std::vector<ContactManifo
     v = length > 0.0 ? Vec2(v / length) : Vec2::Zero();
   }
   return held;
+}
+
+// The direction a block rests along for "Kink corners" (manifold.hpp): the normal of the surface it
+// is held up by in the last step, from the touching points that push it up (supports()) where their
+// normals agree (their mean at least kRestsOn long: one surface); if none touched, the normal of the
+// nearest point that pushes it up, the surface it comes down on (it lands); none for a fixed block
+// or one held by faces that disagree. A slider set down 0.1 mm above a 30 deg face, 2 cm before a
+// 30 deg concave kink of free blocks, met the kink in the step it landed in and was thrown back.
+// Not simply up: a 30 m slider flying tilted 45 deg past a convex kink has its base and its front
+// face turned down alike, and the front face's line passed a joint's corner of the face below. Nor
+// the mean of disagreeing supports: a voussoir of a falling arch, held at its two joints, read its
+// intrados as the face it rested on.
+std::vector<Vec2> rests(const BlockSystem& s, const std::vector<ContactManifold>& previous, double slop,
+                        const Vec2& gravity) {
+  const double g = gravity.norm();
+  const Vec2 up = g > 0.0 ? Vec2(-gravity / g) : Vec2::Zero();
+  const size_t n = s.blocks.size();
+  std::vector<Vec2> held(n, Vec2::Zero()), nearest_normal(n, Vec2::Zero());
+  std::vector<int> count(n, 0);
+  std::vector<double> nearest(n, std::numeric_limits<double>::infinity());
+  const auto add = [&](int block, const Vec2& into, double separation) {
+    if (!(into.dot(up) > kUpward)) return;
+    if (separation <= slop) held[block] += into, ++count[block];
+    if (separation < nearest[block]) nearest[block] = separation, nearest_normal[block] = into;
+  };
+  for (const ContactManifold& m : previous)
+    for (int q = 0; q < m.point_count; ++q) {
+      add(m.block_b, m.normal, m.points[q].separation);
+      add(m.block_a, -m.normal, m.points[q].separation);
+    }
+  std::vector<Vec2> out(n, Vec2::Zero());
+  for (size_t b = 0; b < n; ++b) {
+    if (s.blocks[b].fixed) continue;
+    if (count[b] == 0) {
+      out[b] = nearest_normal[b];
+    } else if (const Vec2 mean = held[b] / count[b]; mean.norm() >= face_axes::kRestsOn) {
+      out[b] = mean.normalized();
+    }
+  }
+  return out;
 }
 
 }  // namespace
@@ -235,6 +276,7 @@ std::string collide(const BlockSystem& s, ContactDetection& detection, const std
   const long n = static_cast<long>(pairs.size());
   geometry.resize(pairs.size());
   const std::vector<Vec2> support = supports(s, contacts.manifolds, settings.linear_slop, settings.gravity);
+  const std::vector<Vec2> rest = rests(s, contacts.manifolds, settings.linear_slop, settings.gravity);
   // Handed out in chunks: a pair of boxes that barely overlap costs little, one whose pieces
   // touch a full manifold, and they are not spread evenly along the sorted pairs. In two
   // static halves one thread waited for the other (on Vajont section VII degraded's first
@@ -284,6 +326,8 @@ std::string collide(const BlockSystem& s, ContactDetection& detection, const std
     ms.proud_floor = std::max(size < 1e299 ? kProudRatio * size : 0.0, settings.sag);
     ms.support_a = support[block_a];
     ms.support_b = support[block_b];
+    ms.rest_a = rest[block_a];
+    ms.rest_b = rest[block_b];
     const int first_a = shapes.pieces[a].first, first_b = shapes.pieces[b].first;
     geometry[k] = collide_polygons(piece_a, piece_b, ms,
                                    solid.subspan(first_a, na), solid.subspan(first_b, nb), reflex.subspan(first_a, na),

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <tuple>
 
 namespace ddafit::face_axes {
 
@@ -162,6 +163,41 @@ ProudFace proud_face(const Shape& p, std::span<const char> solid, const Shape& q
     if (separation < -depth || !(length >= limits.eta || face_length(p, i, limits.flat) >= limits.eta)) continue;
     const double support = support_agreement(normal, limits);
     if (support > best.support) best = {i, separation, support};
+  }
+  return best;
+}
+
+KinkCorner kink_corner(const Shape& p, std::span<const char> p_solid, const Vec2& rest_p, const Shape& q,
+                       std::span<const char> q_solid, double eta, double flat, double reach) {
+  const auto solid = [](std::span<const char> s, int i) { return s.empty() || s[static_cast<size_t>(i)] != 0; };
+  KinkCorner best;
+  for (int i = 0; i < p.n; ++i) {
+    if (!solid(p_solid, i)) continue;
+    const Vec2 p0 = p.at(i), edge = p.at(i + 1) - p0;
+    const double length = edge.norm();
+    if (!(length > 0.0) || -outward(edge).dot(rest_p) < kRestsOn * length) continue;
+    const Vec2 tangent = edge / length, normal = outward(tangent);
+    const Face f = grow_face(p, i, flat);
+    const double from = tangent.dot(p.at(f.first) - p0), to = tangent.dot(p.at(f.last) - p0);
+    for (int k = 0; k < q.n; ++k) {
+      const int before = (k + q.n - 1) % q.n;
+      if (!solid(q_solid, k) || !solid(q_solid, before)) continue;
+      const Vec2 c = q.at(k) - p0;
+      const double u = tangent.dot(c), beyond = std::max(from - u, u - to);
+      if (std::abs(normal.dot(c)) > kRideDepth * eta || !(beyond > 0.0) || !(beyond < std::min(reach, best.beyond)))
+        continue;
+      const double ahead = u > to ? 1.0 : -1.0;
+      // q's faces at the corner: edge k (to the next vertex) and edge `before` (from the last).
+      // One turns up, the other goes down below the line: q is the next block of the surface p
+      // rests on, not that surface's own block (a voussoir whose joint with p opens at a hinge).
+      const Vec2 to_next = q.at(k + 1) - q.at(k), to_last = q.at(before) - q.at(k);
+      for (const auto& [e, d, other] : {std::tuple{k, to_next, to_last}, std::tuple{before, to_last, to_next}}) {
+        const double rise = -normal.dot(d), on = ahead * tangent.dot(d), other_rise = -normal.dot(other);
+        if (rise > kKinkSine * d.norm() && rise < kKinkSteepest * on && other_rise < -kKinkSine * other.norm() &&
+            face_length(q, e, flat) >= eta)
+          best = {k, e, u > to ? f.last : f.first, beyond};
+      }
+    }
   }
   return best;
 }

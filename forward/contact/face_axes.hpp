@@ -158,6 +158,32 @@ struct ProudFace {
 ProudFace proud_face(const Shape& p, std::span<const char> solid, const Shape& q, const AxisLimits& limits,
                      double depth);
 
+// "Kink corners" (manifold.hpp): of q's corners that lie ahead of p on the line of a face p rests
+// on (its outward normal against `rest_p` by more than kRestsOn) -- within eta / 10 of the line,
+// beyond the face's end by less than `reach`, both faces of q there solid -- where a face of q at
+// least eta long turns up from the line (into p's side, by a sine of more than kKinkSine and by
+// less than 60 deg) and runs on away from the face's end while q's other face there goes down
+// below the line: the one nearest the face's end, that face of q and p's corner at that end;
+// corner -1 if none.
+// cos 5 deg: a block resting on a face lies along it (its support is the face's normal to
+// within round-off and its rocking); a voussoir of a falling arch, held at a corner by its
+// neighbour's extrados 26 deg off its intrados, does not rest on its intrados.
+inline constexpr double kRestsOn = 0.996;
+inline constexpr double kKinkSine = 1e-3;
+// tan 60 deg: a face turning up more steeply is a wall, which the resting polygon's front face
+// meets face to face (the separating axis reads that): read as a kink, a block driven along a
+// floor into a row of blocks met the first one's side (tilted by micro-radians) at its corner
+// alone, and rebounded.
+inline constexpr double kKinkSteepest = 1.7320508075688772;
+struct KinkCorner {
+  int corner = -1;  // of q
+  int face = -1;    // q's edge that turns up there
+  int end = -1;     // p's corner at the end of the face it rests on, on the corner's side
+  double beyond = kInfinity;
+};
+KinkCorner kink_corner(const Shape& p, std::span<const char> p_solid, const Vec2& rest_p, const Shape& q,
+                       std::span<const char> q_solid, double eta, double flat, double reach);
+
 // True when some cut of p (solid[i] false; manifold.hpp, "Solid edges") has q wholly beyond
 // it, within slop.
 bool cut_separates(const Shape& p, const Shape& q, double tiny, std::span<const char> solid, double slop);

@@ -195,6 +195,30 @@ Manifold collide_polygons(std::span<const Vec2> a, std::span<const Vec2> b, cons
       (cut_separates(sa, sb, tiny, a_solid, linear_slop) || cut_separates(sb, sa, tiny, b_solid, linear_slop)))
     return m;
 
+  // Kink corners (manifold.hpp): the face that turns up at a corner ahead on the line of the
+  // face a free polygon rests on is the contact, the corner a reflex end of it. Only while the
+  // two are apart: blocks side by side on one surface touch at their joint, their corners at one
+  // place, and there the separating axis reads them.
+  const bool apart = std::max(axis_a.apart, axis_b.apart) > 0.1 * linear_slop;
+  for (const bool b_rests : {false, true}) {
+    const Vec2& rest = b_rests ? settings.rest_b : settings.rest_a;
+    if (!apart || rest.isZero() || !(eta > 0.0)) continue;
+    const Shape& rests = b_rests ? sb : sa;
+    const Shape& other = b_rests ? sa : sb;
+    const std::span<const char> rests_solid = b_rests ? b_solid : a_solid, other_solid = b_rests ? a_solid : b_solid;
+    const KinkCorner kink = kink_corner(rests, rests_solid, rest, other, other_solid, eta, flat, max_distance);
+    if (kink.corner < 0) continue;
+    const Face rf = grow_face(other, kink.face, flat);
+    const Incident incident = incident_edge(rests, rests_solid, face_normal(other, kink.face, flat), tiny);
+    // The resting polygon's corner at its face's end meets the kink: its face there, no other.
+    const Face incf = incident.edge < 0 ? Face{} : grow_face(rests, incident.edge, flat);
+    if (incident.edge < 0 || (incf.first != kink.end && incf.last != kink.end)) continue;
+    const bool reflex_end[2] = {rf.first == kink.corner, rf.last == kink.corner};
+    Manifold out;
+    clip_face_contact(other, rf, rests, incf, b_rests ? 0 : 1, settings, has_cuts, reflex_end, out);
+    if (out.point_count > 0) return out;
+  }
+
   // Flush neighbours: two polygons along one surface line touch only at a corner sliver.
   // Only while their overlap is one, no longer and no deeper than eta: not when one lies
   // along another face of the other (rides), nor when they overlap deeper than

@@ -68,6 +68,9 @@ struct ManifoldSettings {
   // mean normal of its touching contacts that push it up, from its supports towards it);
   // ranks flush faces.
   Vec2 support_a = Vec2::Zero(), support_b = Vec2::Zero();
+  // Unit or zero: the normal of the surface each polygon's block rests on, for "Kink corners"
+  // (collide.cpp, rests()); zero for a fixed block, or one held by faces that disagree.
+  Vec2 rest_a = Vec2::Zero(), rest_b = Vec2::Zero();
 };
 
 // Convex counter-clockwise polygons a and b. When the polygons are apart by more than
@@ -147,6 +150,25 @@ struct ManifoldSettings {
 // joint's face as soon as that overlap passed h (1.565e-5 m against h = 1.560e-5 m), pushed the
 // two columns of the slab apart and left it 2.2 % off seed Eq. 4 (tests/test_stacked_slider.cpp).
 // Without supports (the first step) the separating axis decides.
+//
+// Kink corners: while the two polygons are apart, a corner of one lying on the line of a face
+// the other rests on (a free polygon whose rest_a or rest_b agrees with that face's normal by more
+// than kRestsOn; the corner within eta / 10 of the line, beyond the face's end by less than the
+// margin), where a face of the corner's polygon turns up from the line by less than 60 deg and
+// runs on away from the face's end while its other face there goes down below the line, is the
+// concave kink of the surface the resting polygon slides on: that polygon's corner at the face's
+// end slides along the line into the kink. The contact is the face that turns up, the corner at
+// the kink a reflex end of it ("Reflex corners"): the resting polygon's face there is clipped
+// against it and its corner beside the kink is a point, at its distance from that face's line.
+// It is where a slide leaves the block it rests on for the next block of the surface, turning up
+// at the joint (a valley floor of free blocks below a slope). The separating axis was the slider's
+// front face (or the line from corner to corner), whose normal points along the slide: its
+// speculative contact threw a 30 m slider arriving at 21.6 m/s at a 30 deg kink back up the slope
+// (tests/test_ground_joints.cpp). The same corner of a fixed ground, where two fixed blocks meet
+// at the kink, is a reflex corner of the ground (ground_joints.hpp). Not a steeper face, which is
+// a wall the front face meets face to face, nor a block whose other face at the corner runs
+// along the line (the surface's own block), nor one apart by no more than 0.1 x linear_slop
+// (blocks side by side on one surface touch at their joint, their corners at one place).
 //
 // Solid edges: a convex piece of a concave block has edges that run inside the block
 // (the cuts of its decomposition). Such an edge is no face: a neighbour can only be
