@@ -5,9 +5,9 @@
 #include <limits>
 
 #include "forward/contact/contact_law.hpp"
-#include "forward/contact/face_axes.hpp"
 #include "forward/contact/manifold.hpp"
 #include "forward/contact/slip_history.hpp"
+#include "forward/contact/supports.hpp"
 #include "forward/parallel.hpp"
 
 namespace ddafit {
@@ -176,83 +176,6 @@ void drop_shared_corners(const BlockSystem& s, std::vector<ContactManifold>& man
     manifolds.erase(std::remove_if(manifolds.begin(), manifolds.end(),
                                    [](const ContactManifold& m) { return m.point_count == 0; }),
                     manifolds.end());
-}
-
-// Per block, the direction it was held up from in the last step, unit or zero
-// (ManifoldSettings::support_a/b): the mean normal, pointing into it, of its touching points
-// that push it up (their normal against gravity by more than a tenth). A block none of whose
-// points does (or a scene without gravity) takes all its touching points.
-// Why only the points that push up: a block that carries another is pushed down by it as
-// often as up by what it rests on, and counted together the two cancelled (until revision
-// 2026-12-03.4): the block had no support, and at the first flush joint its front face took
-// the joint face and held it there, a 2 x 0.125 m block carrying one as large stopped dead
-// (docs/theory.md §3, "Flush faces"). Weighting every point by its load instead is not robust
-// either: the implicit solver's loads swing by half within a step's open-close iterations,
-// and a thin block under a heavy one (3 x 0.375 m under 3 x 1.125 m on a free row, 35 deg)
-// was then pushed down on balance, took a joint face and fell 19 % behind seed Eq. 4.
-constexpr double kUpward = 0.1;  // a normal pushes a block up when it points up by more than this
-std::vector<Vec2> supports(const BlockSystem& s, const std::vector<ContactManifold>& previous, double slop,
-                           const Vec2& gravity) {
-  const double g = gravity.norm();
-  const Vec2 up = g > 0.0 ? Vec2(-gravity / g) : Vec2::Zero();
-  std::vector<Vec2> held(s.blocks.size(), Vec2::Zero()), all(s.blocks.size(), Vec2::Zero());
-  const auto add = [&](int block, const Vec2& into, int touching) {
-    all[block] += touching * into;
-    if (into.dot(up) > kUpward) held[block] += touching * into;
-  };
-  for (const ContactManifold& m : previous) {
-    int touching = 0;
-    for (int q = 0; q < m.point_count; ++q) touching += m.points[q].separation <= slop;
-    add(m.block_b, m.normal, touching);
-    add(m.block_a, -m.normal, touching);
-  }
-  for (size_t b = 0; b < held.size(); ++b) {
-    Vec2& v = held[b];
-    if (v.norm() == 0.0) v = all[b];
-    const double length = v.norm();
-    v = length > 0.0 ? Vec2(v / length) : Vec2::Zero();
-  }
-  return held;
-}
-
-// The direction a block rests along for "Kink corners" (manifold.hpp): the normal of the surface it
-// is held up by in the last step, from the touching points that push it up (supports()) where their
-// normals agree (their mean at least kRestsOn long: one surface); if none touched, the normal of the
-// nearest point that pushes it up, the surface it comes down on (it lands); none for a fixed block
-// or one held by faces that disagree. A slider set down 0.1 mm above a 30 deg face, 2 cm before a
-// 30 deg concave kink of free blocks, met the kink in the step it landed in and was thrown back.
-// Not simply up: a 30 m slider flying tilted 45 deg past a convex kink has its base and its front
-// face turned down alike, and the front face's line passed a joint's corner of the face below. Nor
-// the mean of disagreeing supports: a voussoir of a falling arch, held at its two joints, read its
-// intrados as the face it rested on.
-std::vector<Vec2> rests(const BlockSystem& s, const std::vector<ContactManifold>& previous, double slop,
-                        const Vec2& gravity) {
-  const double g = gravity.norm();
-  const Vec2 up = g > 0.0 ? Vec2(-gravity / g) : Vec2::Zero();
-  const size_t n = s.blocks.size();
-  std::vector<Vec2> held(n, Vec2::Zero()), nearest_normal(n, Vec2::Zero());
-  std::vector<int> count(n, 0);
-  std::vector<double> nearest(n, std::numeric_limits<double>::infinity());
-  const auto add = [&](int block, const Vec2& into, double separation) {
-    if (!(into.dot(up) > kUpward)) return;
-    if (separation <= slop) held[block] += into, ++count[block];
-    if (separation < nearest[block]) nearest[block] = separation, nearest_normal[block] = into;
-  };
-  for (const ContactManifold& m : previous)
-    for (int q = 0; q < m.point_count; ++q) {
-      add(m.block_b, m.normal, m.points[q].separation);
-      add(m.block_a, -m.normal, m.points[q].separation);
-    }
-  std::vector<Vec2> out(n, Vec2::Zero());
-  for (size_t b = 0; b < n; ++b) {
-    if (s.blocks[b].fixed) continue;
-    if (count[b] == 0) {
-      out[b] = nearest_normal[b];
-    } else if (const Vec2 mean = held[b] / count[b]; mean.norm() >= face_axes::kRestsOn) {
-      out[b] = mean.normalized();
-    }
-  }
-  return out;
 }
 
 }  // namespace
