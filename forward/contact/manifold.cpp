@@ -202,7 +202,8 @@ Manifold collide_polygons(std::span<const Vec2> a, std::span<const Vec2> b, cons
   const bool apart = std::max(axis_a.apart, axis_b.apart) > 0.1 * linear_slop;
   for (const bool b_rests : {false, true}) {
     const Vec2& rest = b_rests ? settings.rest_b : settings.rest_a;
-    if (!apart || rest.isZero() || !(eta > 0.0)) continue;
+    if (!apart || !(eta > 0.0)) break;
+    if (rest.isZero()) continue;
     const Shape& rests = b_rests ? sb : sa;
     const Shape& other = b_rests ? sa : sb;
     const std::span<const char> rests_solid = b_rests ? b_solid : a_solid, other_solid = b_rests ? a_solid : b_solid;

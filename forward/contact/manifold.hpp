@@ -69,7 +69,7 @@ struct ManifoldSettings {
   // ranks flush faces.
   Vec2 support_a = Vec2::Zero(), support_b = Vec2::Zero();
   // Unit or zero: the normal of the surface each polygon's block rests on, for "Kink corners"
-  // (collide.cpp, rests()); zero for a fixed block, or one held by faces that disagree.
+  // (supports.hpp); zero for a fixed block, or one held by faces that disagree.
   Vec2 rest_a = Vec2::Zero(), rest_b = Vec2::Zero();
 };
 
