@@ -7,6 +7,6 @@
 
 namespace ddafit {
 
-inline constexpr const char* kModelRevision = "2026-12-07.4";
+inline constexpr const char* kModelRevision = "2026-12-07.5";
 
 }  // namespace ddafit

@@ -323,20 +323,30 @@ TEST(GroundJoints, ASliderComesDownOntoAFloorOfFreeBlocksAsOntoAFixedOneImplicit
   expect_free_floors_turn_a_slider_as_fixed(Integrator::Implicit, {2.0});
 }
 
-// Known defect (docs/theory.md, Known limits (p)): set down a fifth of its length before the kink,
-// the slider lands on the face and straddles the kink at once, its base tilted over the face, its
-// rear corner sliding down the face. When that corner comes to a joint of the face, the next free
-// block's corner lies within eta / 10 under the base, near the corner: the base and the next
-// block's top are both flush faces of the pair, and the slider's support (half face, half floor)
-// ranks its base first. That base's speculative point at the joint's corner kicked the 30 m slider
-// at 10 m/s up by 2 m/s at 2.1 s, and it ran 16 % short. 7 of 36 runs on the substep solver and 3 of
-// 12 on the implicit one are over the bound (2.3-16 %); the rest of the class is within it.
-TEST(GroundJoints, DISABLED_ASliderSetDownAtTheFootOfAFaceOverAFloorOfFreeBlocksRunsAsOnAFixedOneSubstep) {
-  expect_free_floors_turn_a_slider_as_fixed(Integrator::Substep, {0.2});
+// Set down a fifth of its length before the kink, the slider lands on the face and straddles the
+// kink at once, its base tilted over the face, its rear corner sliding down the face and its
+// front on the floor, so that its support lies between the two. When the rear corner came to a
+// joint of the face, the next free block's corner lay 2 cm under the tilted base, and ranked by
+// the support the base was the contact: its point at that corner kicked the 30 m slider at 10 m/s
+// up by 2.3 m/s and it ran 16 % short (model revision 2026-12-07.4: 7 of 36 runs on the substep
+// solver and 3 of 12 on the implicit one 2.3-16 % off). The face that continues the surface the
+// rear corner slides on now ranks first (manifold.hpp, "Flush faces"), and a block that touched
+// nothing is supported from the surface it lands on (supports.hpp). Tolerance as above.
+TEST(GroundJoints, ASliderSetDownAtTheFootOfAFaceOverAFloorOfFreeBlocksRunsAsOnAFixedOneImplicit) {
+  expect_free_floors_turn_a_slider_as_fixed(Integrator::Implicit, {0.2});
 }
 
-TEST(GroundJoints, DISABLED_ASliderSetDownAtTheFootOfAFaceOverAFloorOfFreeBlocksRunsAsOnAFixedOneImplicit) {
-  expect_free_floors_turn_a_slider_as_fixed(Integrator::Implicit, {0.2});
+// Known defect (docs/theory.md, Known limits (p)): on the substep solver one of the 36 runs is
+// over the bound, a 1 m slider at 10 m/s set down before a 30 deg kink at 5 ms x 4 (2.6 %). The
+// slider pivots on its front corner onto the floor; half way round, its rear corner 6.5 mm above
+// the face and 2 cm below the joint, the joint's corner of the next free block lies 1.2 mm across
+// the line of its base, beyond the base's end: the base is then the pair's only flush face and
+// overrides the separating axis (the face, 6 mm apart), its point at the rear corner stops the
+// pivot (5.3 to 0.7 rad/s) and the slider keeps 0.19 m/s more along the floor than on the fixed
+// ground. Reading only the part of the other polygon over a face as its gap mends this run and
+// puts five arriving runs of the class above 2 % (3.2-3.5 %).
+TEST(GroundJoints, DISABLED_ASliderSetDownAtTheFootOfAFaceOverAFloorOfFreeBlocksRunsAsOnAFixedOneSubstep) {
+  expect_free_floors_turn_a_slider_as_fixed(Integrator::Substep, {0.2});
 }
 
 // A ground given by a surface digitised every half metre: one concave block of 30 deg, its top 400

@@ -198,7 +198,7 @@ std::string collide(const BlockSystem& s, ContactDetection& detection, const std
   // that touch, in place (no full manifold per pair of boxes, no copy).
   const long n = static_cast<long>(pairs.size());
   geometry.resize(pairs.size());
-  const auto [support, rest] = read_supports(s, contacts.manifolds, settings.linear_slop, settings.gravity);
+  const auto [support, rest, corner_held] = read_supports(s, contacts.manifolds, settings.linear_slop, settings.gravity);
   // Handed out in chunks: a pair of boxes that barely overlap costs little, one whose pieces
   // touch a full manifold, and they are not spread evenly along the sorted pairs. In two
   // static halves one thread waited for the other (on Vajont section VII degraded's first
@@ -251,6 +251,9 @@ std::string collide(const BlockSystem& s, ContactDetection& detection, const std
     ms.rest_a = rest[block_a];
     ms.rest_b = rest[block_b];
     const int first_a = shapes.pieces[a].first, first_b = shapes.pieces[b].first;
+    const std::span<const int> corners(shapes.corners);
+    ms.held_a = {corner_held, corners.subspan(first_a, na)};
+    ms.held_b = {corner_held, corners.subspan(first_b, nb)};
     geometry[k] = collide_polygons(piece_a, piece_b, ms,
                                    solid.subspan(first_a, na), solid.subspan(first_b, nb), reflex.subspan(first_a, na),
                                    reflex.subspan(first_b, nb));

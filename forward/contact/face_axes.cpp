@@ -6,10 +6,11 @@
 
 namespace ddafit::face_axes {
 
-bool flush_better(double support, double gap, double than_support, double than_gap, double eta, double slop) {
-  const bool shallow = std::max(std::abs(gap), std::abs(than_gap)) <= kRideDepth * eta;
-  if (shallow && std::abs(support - than_support) > kSupportTie) return support > than_support;
-  return std::abs(gap) + slop < std::abs(than_gap);
+bool flush_better(const FlushRank& face, const FlushRank& than, double eta, double slop) {
+  if (face.slides != than.slides) return face.slides;
+  const bool shallow = std::max(std::abs(face.gap), std::abs(than.gap)) <= kRideDepth * eta;
+  if (shallow && std::abs(face.support - than.support) > kSupportTie) return face.support > than.support;
+  return std::abs(face.gap) + slop < std::abs(than.gap);
 }
 
 Face grow_face(const Shape& p, int edge, double flat) {
@@ -78,6 +79,20 @@ bool face_to_face(const Shape& q, std::span<const char> q_solid, const Vec2& nor
   return std::min(to, std::max(u0, u1)) - std::max(from, std::min(u0, u1)) > eta;
 }
 
+// A corner of q within `band` of the face's line touched, in the last step, a face whose normal
+// agrees with this face's (kRestsOn), and q's face most nearly opposite to it is not parallel to
+// it: the face continues the surface that corner slides on (manifold.hpp, "Flush faces"). Two
+// blocks face to face touch at corners of both, and which one a point sat on was the last step's
+// choice of reference: ranked on it, a row of blocks swapped its references from step to step.
+bool continues_a_slide(const Shape& q, std::span<const char> q_solid, const CornerHolds& held, const Vec2& p0,
+                       const Vec2& normal, double band, double tiny) {
+  if (held.ids.empty()) return false;
+  for (int k = 0; k < q.n; ++k)
+    if (std::abs(normal.dot(q.at(k) - p0)) <= band && held.at(k).dot(normal) >= kRestsOn)
+      return incident_edge(q, q_solid, normal, tiny).facing > -kRestsOn;
+  return false;
+}
+
 }  // namespace
 
 Axis best_axis(const Shape& p, std::span<const char> solid, std::span<const char> reflex, const Shape& q,
@@ -118,15 +133,18 @@ Axis best_axis(const Shape& p, std::span<const char> solid, std::span<const char
         const Span close = near_line_span(q, p0, normal, tangent, kRideDepth * eta);
         best.rides = std::min(close.hi, to) - std::max(close.lo, from) > eta;
       }
-      const double support = support_agreement(normal, limits);
+      const FlushRank rank{continues_a_slide(q, q_solid, limits.held_q, p0, normal, kRideDepth * eta, tiny),
+                           support_agreement(normal, limits), gap};
       // Only a face the polygon lies close against (a tenth of eta): in a packed mass many
       // blocks lie within eta of a neighbour's face line, and overriding the separating axis
       // for all of them let Vajont section IV overlap by 1 % of a block.
       if (limits.flush_faces && to - from >= eta && std::abs(gap) <= kRideDepth * eta &&
-          (best.flush_edge < 0 || flush_better(support, gap, best.flush_support, best.flush_gap, eta, 0.0))) {
+          (best.flush_edge < 0 ||
+           flush_better(rank, {best.flush_slides, best.flush_support, best.flush_gap}, eta, 0.0))) {
         best.flush_edge = i;
         best.flush_gap = gap;
-        best.flush_support = support;
+        best.flush_support = rank.support;
+        best.flush_slides = rank.slides;
       }
     }
     if (!(gap > best.separation) && !(gap > best.apart)) continue;  // own >= 0 cannot make it better

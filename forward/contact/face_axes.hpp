@@ -10,6 +10,7 @@
 #include <span>
 #include <vector>
 
+#include "forward/contact/manifold.hpp"
 #include "forward/kinematics.hpp"
 #include "forward/scene.hpp"
 
@@ -64,6 +65,10 @@ struct Axis {
   int flush_edge = -1;
   double flush_gap = kInfinity;
   double flush_support = 0.0;  // how well its normal agrees with the pair's supports
+  // Its line carries a corner of q that touched a face of the same direction in the last step, q
+  // not face to face with it: it continues the surface that corner slides on, and ranks before
+  // the supports (flush_better).
+  bool flush_slides = false;
 };
 
 // Flush faces are ranked by how well their normal (from p towards q) agrees with the way
@@ -75,13 +80,19 @@ struct Axis {
 // Otherwise, and within kSupportTie of each other, the face q lies closer to the line of
 // (least |gap|).
 inline constexpr double kSupportTie = 0.05;
+
 inline constexpr double kRideDepth = 0.1;
 // "Flush neighbours" (manifold.hpp) empties the manifold of a corner sliver: a pair whose
 // separation over every solid axis is no deeper than this share of eta. A quarter: a block
 // resting on a flush surface overlaps it by its resting overlap (about 1e-4 of its size, 1/200
 // of eta at the default ratio), and a quarter of eta is half the 1 % overlap the runs are held to.
 inline constexpr double kSliverDepth = 0.25;
-bool flush_better(double support, double gap, double than_support, double than_gap, double eta, double slop);
+struct FlushRank {
+  bool slides = false;
+  double support = 0.0;
+  double gap = kInfinity;
+};
+bool flush_better(const FlushRank& face, const FlushRank& than, double eta, double slop);
 
 // The edge of `inc` facing the direction `normal` (unit) the most, among its solid edges:
 // the incident face. `facing` is the cosine between its outward normal and `normal`;
@@ -133,6 +144,7 @@ struct AxisLimits {
   // The supports of p's and q's blocks (ManifoldSettings::support_a/b): a normal from p
   // towards q agrees with q's support, or against p's.
   Vec2 support_p = Vec2::Zero(), support_q = Vec2::Zero();
+  CornerHolds held_q;  // the faces q's corners touched in the last step (ManifoldSettings::held_*)
 };
 // How well a face normal of p (from p towards q) agrees with the supports of the last step:
 // it points the way q's block was pushed, or against p's.

@@ -168,10 +168,12 @@ Manifold collide_polygons(std::span<const Vec2> a, std::span<const Vec2> b, cons
   // blocks (where joints met a side), and a face split there gave a sliver lying along it
   // contact on one half only: its tip sank 18 cm into the other half.
   const double eta = settings.flush_tolerance, flat = std::max(1e-3 * linear_slop, 0.25 * eta);
-  const AxisLimits limits_a{tiny, max_distance, eta, flat, settings.flush_faces, settings.support_a, settings.support_b};
+  const AxisLimits limits_a{tiny, max_distance, eta, flat, settings.flush_faces, settings.support_a, settings.support_b,
+                            settings.held_b};
   const Axis axis_a = best_axis(sa, a_solid, a_reflex, sb, b_solid, b_reflex, limits_a);
   if (axis_a.apart > max_distance) return m;
-  const AxisLimits limits_b{tiny, max_distance, eta, flat, settings.flush_faces, settings.support_b, settings.support_a};
+  const AxisLimits limits_b{tiny, max_distance, eta, flat, settings.flush_faces, settings.support_b, settings.support_a,
+                            settings.held_a};
   const Axis axis_b = best_axis(sb, b_solid, b_reflex, sa, a_solid, a_reflex, limits_b);
   if (axis_a.edge < 0 && axis_b.edge < 0) return m;
   if (axis_b.apart > max_distance) return m;
@@ -240,9 +242,9 @@ Manifold collide_polygons(std::span<const Vec2> a, std::span<const Vec2> b, cons
   const bool flush_face = axis_a.flush_edge >= 0 || axis_b.flush_edge >= 0;
   int edge_a = flush_face ? axis_a.flush_edge : axis_a.edge;
   int edge_b = flush_face ? axis_b.flush_edge : axis_b.edge;
+  const auto rank = [](const Axis& x) { return FlushRank{x.flush_slides, x.flush_support, x.flush_gap}; };
   const bool better_b = flush_face ? axis_b.flush_edge >= 0 &&
-                                         flush_better(axis_b.flush_support, axis_b.flush_gap, axis_a.flush_support,
-                                                      axis_a.flush_gap, eta, 0.1 * linear_slop)
+                                         flush_better(rank(axis_b), rank(axis_a), eta, 0.1 * linear_slop)
                                    : axis_b.separation > axis_a.separation + 0.1 * linear_slop;
   bool flip = edge_a < 0 || (edge_b >= 0 && better_b);
   // Proud edges (manifold.hpp): a corner just across a joint whose far block stands up to

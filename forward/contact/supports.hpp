@@ -15,7 +15,11 @@ namespace ddafit {
 // support (ManifoldSettings::support_a/b): the direction it was held up from, the mean normal,
 // pointing into it, of its touching points that push it up (their normal against gravity by
 // more than a tenth). A block none of whose points does (or a scene without gravity) takes all
-// its touching points.
+// its touching points; a free block that touched nothing, the normal of its nearest point that
+// would push it up (it lands: the rest below). Without it a 30 m slider landing at the foot of a
+// 40 deg face had no support, and of two flush faces of the pair with the floor's first free
+// block the one it lay closer to the line of was its own front face (the floor's corner 1 cm
+// behind that face's line): a wall along the slide, which took 2 of its 18.7 m/s.
 // Why only the points that push up: a block that carries another is pushed down by it as
 // often as up by what it rests on, and counted together the two cancelled (until revision
 // 2026-12-03.4): the block had no support, and at the first flush joint its front face took
@@ -34,9 +38,17 @@ namespace ddafit {
 // a convex kink has its base and its front face turned down alike, and the front face's line
 // passed a joint's corner of the face below. Nor the mean of disagreeing supports: a voussoir
 // of a falling arch, held at its two joints, read its intrados as the face it rested on.
+// corner_held (ManifoldSettings::held_a/b), per vertex id of BlockSystem::vertices: the normal,
+// into the corner's block, of the touching points that sit on that corner, where they agree
+// (their mean at least kRestsOn long); zero for a corner that touched nothing or faces that
+// disagree. A block straddling a concave kink (its rear corner on the face, its front on the
+// floor) has a support between the two, and ranked by it the flush faces of its pair with the
+// face's next block took its base; its rear corner still slides on the face (manifold.hpp,
+// "Flush faces").
 struct Supports {
   std::vector<Vec2> support;
   std::vector<Vec2> rest;
+  std::vector<Vec2> corner_held;
 };
 Supports read_supports(const BlockSystem& s, const std::vector<ContactManifold>& previous, double slop,
                        const Vec2& gravity);
