@@ -26,11 +26,11 @@ size_of() {  # seed Table 2 mean block sizes, m (cases/vajont/vajont.yaml)
 }
 
 # Since model revision 2026-11-27.4 the scene runs 10 ms steps of three substeps with split
-# impulses; sections IX-X (6.6 and 5.7 m blocks) overlap by more than 1 % at that step, so
-# they run at 5 ms x 4 (cases/vajont/vajont.yaml says why beside its step).
+# impulses; sections VIII-X (7.4, 6.6 and 5.7 m blocks) overlap by more than 1 % at that step,
+# so they run at 5 ms x 4 (cases/vajont/vajont.yaml says why beside its step).
 step_of() {
   case $1 in
-    IX|X) echo "--set time.step=0.005 --set time.substeps=4" ;;
+    VIII|IX|X) echo "--set time.step=0.005 --set time.substeps=4" ;;
     *) echo "" ;;
   esac
 }

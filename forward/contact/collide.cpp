@@ -198,7 +198,8 @@ std::string collide(const BlockSystem& s, ContactDetection& detection, const std
   // that touch, in place (no full manifold per pair of boxes, no copy).
   const long n = static_cast<long>(pairs.size());
   geometry.resize(pairs.size());
-  const auto [support, rest, corner_held] = read_supports(s, contacts.manifolds, settings.linear_slop, settings.gravity);
+  const auto [support, rest, corner_held] =
+      read_supports(s, contacts.manifolds, settings.linear_slop, settings.gravity);
   // Handed out in chunks: a pair of boxes that barely overlap costs little, one whose pieces
   // touch a full manifold, and they are not spread evenly along the sorted pairs. In two
   // static halves one thread waited for the other (on Vajont section VII degraded's first

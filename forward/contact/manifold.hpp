@@ -49,7 +49,9 @@ constexpr std::uint32_t manifold_id(int owner, int vertex, int other_feature, bo
 struct CornerHolds {
   std::span<const Vec2> normal;  // per vertex id (BlockSystem::vertices)
   std::span<const int> ids;      // the polygon's corners' vertex ids, in its order
-  Vec2 at(int k) const { return ids.empty() ? Vec2::Zero() : normal[static_cast<size_t>(ids[static_cast<size_t>(k)])]; }
+  Vec2 at(int k) const {
+    return ids.empty() ? Vec2::Zero() : normal[static_cast<size_t>(ids[static_cast<size_t>(k)])];
+  }
 };
 
 struct ManifoldSettings {
