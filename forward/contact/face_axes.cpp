@@ -133,18 +133,19 @@ Axis best_axis(const Shape& p, std::span<const char> solid, std::span<const char
         const Span close = near_line_span(q, p0, normal, tangent, kRideDepth * eta);
         best.rides = std::min(close.hi, to) - std::max(close.lo, from) > eta;
       }
-      const FlushRank rank{continues_a_slide(q, q_solid, limits.held_q, p0, normal, kRideDepth * eta, tiny),
-                           support_agreement(normal, limits), gap};
       // Only a face the polygon lies close against (a tenth of eta): in a packed mass many
       // blocks lie within eta of a neighbour's face line, and overriding the separating axis
       // for all of them let Vajont section IV overlap by 1 % of a block.
-      if (limits.flush_faces && to - from >= eta && std::abs(gap) <= kRideDepth * eta &&
-          (best.flush_edge < 0 ||
-           flush_better(rank, {best.flush_slides, best.flush_support, best.flush_gap}, eta, 0.0))) {
-        best.flush_edge = i;
-        best.flush_gap = gap;
-        best.flush_support = rank.support;
-        best.flush_slides = rank.slides;
+      if (limits.flush_faces && to - from >= eta && std::abs(gap) <= kRideDepth * eta) {
+        const FlushRank rank{continues_a_slide(q, q_solid, limits.held_q, p0, normal, kRideDepth * eta, tiny),
+                             support_agreement(normal, limits), gap};
+        if (best.flush_edge < 0 ||
+            flush_better(rank, {best.flush_slides, best.flush_support, best.flush_gap}, eta, 0.0)) {
+          best.flush_edge = i;
+          best.flush_gap = gap;
+          best.flush_support = rank.support;
+          best.flush_slides = rank.slides;
+        }
       }
     }
     if (!(gap > best.separation) && !(gap > best.apart)) continue;  // own >= 0 cannot make it better

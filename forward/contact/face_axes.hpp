@@ -78,9 +78,9 @@ struct Axis {
 // deeper under a face has met a step, whose side is the contact (a block riding up a 2 mm
 // step under a 1.2 m block was kicked off it by the implicit solver's penalty spring).
 // Otherwise, and within kSupportTie of each other, the face q lies closer to the line of
-// (least |gap|).
+// (least |gap|). Before all these, a face that continues the surface a corner of q slid on in the
+// last step (Axis::flush_slides).
 inline constexpr double kSupportTie = 0.05;
-
 inline constexpr double kRideDepth = 0.1;
 // "Flush neighbours" (manifold.hpp) empties the manifold of a corner sliver: a pair whose
 // separation over every solid axis is no deeper than this share of eta. A quarter: a block
