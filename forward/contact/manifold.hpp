@@ -115,10 +115,10 @@ struct ManifoldSettings {
 // (or the slider's front face) as the contact face and throw the block back. Once it has
 // crossed, the next block's face lies under it and the separating axis takes that face. It
 // needs no knowledge of the block the slider rests on: the slider lies along the next
-// block's face line, beside the face. A real step is higher than eta: the slider then reaches below T's line by the step's
-// height, the rule does not apply, and the step's face stops it. A block above T by more
-// than eta (a step down, a block in flight) is no neighbour either, and keeps its
-// speculative contacts. A kink of the surface at the joint is covered too: at a concave kink
+// block's face line, beside the face. A real step is higher than eta: the slider then reaches
+// below T's line by the step's height, the rule does not apply, and the step's face stops it. A
+// block above T by more than eta (a step down, a block in flight) is no neighbour either, and
+// keeps its speculative contacts. A kink of the surface at the joint is covered too: at a concave kink
 // the slider lies along the next face's line, at a convex one the next block lies along the
 // slider's face. (Box2D's smooth segments reach the same answer with each segment's
 // neighbours, its ghost vertices; Shi's entrance rule would take the joint face, since the
