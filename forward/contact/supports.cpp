@@ -27,8 +27,10 @@ Supports read_supports(const BlockSystem& s, const std::vector<ContactManifold>&
     count[block] += touching;
     if (closest < nearest[block]) nearest[block] = closest, nearest_normal[block] = into;
   };
-  // Per corner: the normals into its block of the touching points on it, and how many.
-  std::vector<Vec2> corner_sum(s.vertices.size(), Vec2::Zero());
+  Supports out{std::vector<Vec2>(n, Vec2::Zero()), std::vector<Vec2>(n, Vec2::Zero()),
+               std::vector<Vec2>(s.vertices.size(), Vec2::Zero())};
+  // Per corner: the sum of the normals into its block of the touching points on it (in
+  // out.corner_held until it is read below), and how many.
   std::vector<int> corner_count(s.vertices.size(), 0);
   for (const ContactManifold& m : previous) {
     int touching = 0;
@@ -39,17 +41,17 @@ Supports read_supports(const BlockSystem& s, const std::vector<ContactManifold>&
       closest = std::min(closest, p.separation);
       if (!(p.separation <= slop) || p.owner < 0) continue;
       const bool on_a = s.vertex_block[static_cast<size_t>(p.owner)] == m.block_a;
-      corner_sum[static_cast<size_t>(p.owner)] += on_a ? Vec2(-m.normal) : m.normal;
+      out.corner_held[static_cast<size_t>(p.owner)] += on_a ? Vec2(-m.normal) : m.normal;
       ++corner_count[static_cast<size_t>(p.owner)];
     }
     add(m.block_b, m.normal, touching, closest);
     add(m.block_a, -m.normal, touching, closest);
   }
-  Supports out{std::vector<Vec2>(n, Vec2::Zero()), std::vector<Vec2>(n, Vec2::Zero()),
-               std::vector<Vec2>(s.vertices.size(), Vec2::Zero())};
-  for (size_t v = 0; v < corner_sum.size(); ++v)
-    if (corner_count[v] > 0 && corner_sum[v].norm() >= face_axes::kRestsOn * corner_count[v])
-      out.corner_held[v] = corner_sum[v].normalized();
+  for (size_t v = 0; v < corner_count.size(); ++v) {
+    Vec2& sum = out.corner_held[v];
+    if (corner_count[v] == 0) continue;
+    sum = sum.norm() >= face_axes::kRestsOn * corner_count[v] ? Vec2(sum.normalized()) : Vec2::Zero();
+  }
   for (size_t b = 0; b < n; ++b) {
     const Vec2& v = held[b].norm() == 0.0 ? all[b] : held[b];
     const double length = v.norm();
