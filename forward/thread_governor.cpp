@@ -71,7 +71,7 @@ void ThreadGovernor::end_step() {
     return;
   }
   seconds_[current_ == 1 ? 0 : 1].push_back(seconds);
-  if (steps_in_phase_ < settings_.window_steps) return;
+  if (steps_in_phase_ < settings_.window_steps && !clear_loss_so_far()) return;
   steps_in_phase_ = 0;
   if (phase_ == Phase::First) {
     phase_ = Phase::Second;
@@ -85,11 +85,19 @@ void ThreadGovernor::end_step() {
   clear_loss_before_ = clear_loss;
   clear_win_before_ = clear_win;
   most_median_ = all;
+  one_median_ = one;
   slow_in_row_ = 0;
   seconds_[0].clear();
   seconds_[1].clear();
   most_first_ = !most_first_;
   phase_ = Phase::Hold;
+}
+
+bool ThreadGovernor::clear_loss_so_far() {
+  if (current_ == 1 || steps_in_phase_ < settings_.cut_steps) return false;
+  const double one = seconds_[0].empty() ? one_median_ : median(seconds_[0]);
+  std::vector<double> so_far = seconds_[1];
+  return one > 0.0 && median(so_far) > settings_.clear_loss * one;
 }
 
 }  // namespace ddafit

@@ -45,6 +45,13 @@ struct ThreadGovernorSettings {
   // or two (an impact group) is no run of them.
   double slow_factor = 2.0;
   int slow_steps = 8;
+  // A window on all threads ends after cut_steps steps once their median is a clear loss
+  // against the one-thread median (this pair's, or the last pair's when all threads go first).
+  // Each such step waits at every barrier for a thread another program displaced, ten or more
+  // times a step on one thread: two Vajont section I runs started together at 20 ms x 4 (2571
+  // steps, 2.9 s alone) spent 2.2 s of their quiet start's 500 steps so (0.46 s alone), and took
+  // 2.2-2.8x their solo wall (docs/performance.md, "Two runs at once at 20 ms x 4").
+  int cut_steps = 4;
 };
 
 // The threads a run may use: OpenMP's present maximum (set from --threads), 1 without OpenMP.
@@ -75,18 +82,22 @@ class ThreadGovernor {
   ThreadGovernorSettings settings_;
   std::function<double()> clock_;
   Phase phase_ = Phase::First;
-  bool most_first_ = true;  // which count the next pair of windows times first
+  // Which count the next pair of windows times first. One thread first in the first pair, so that
+  // its window on all threads has a median to be cut against (ThreadGovernorSettings::cut_steps).
+  bool most_first_ = false;
   int current_ = 1;
   int steps_in_phase_ = 0;
   int hold_ = 0;                    // steps of the present hold
   bool clear_loss_before_ = false;  // the last pair of windows was a clear loss
   bool clear_win_before_ = false;   // ... a clear win
   double most_median_ = 0.0;        // the last pair's median step on all threads
+  double one_median_ = 0.0;         // ... on one thread (0 before the first pair)
   int slow_in_row_ = 0;             // steps in a row of the hold beyond slow_factor x most_median_
   double started_ = 0.0;
   std::vector<double> seconds_[2];  // each step's wall in the pair's windows: [0] one thread, [1] most
   long steps_on_one_ = 0, steps_on_most_ = 0;
   void set_threads(int threads);
+  bool clear_loss_so_far();
 };
 
 }  // namespace ddafit

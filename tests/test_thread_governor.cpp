@@ -46,8 +46,10 @@ long steps_timing_the_other(double on_two) {
   return on_two < 1.0 ? governor.steps_on_one() : governor.steps_on_most();
 }
 
-// Two windows of 16 steps, then 240 on the choice: the first choice holds from step 32 to 271.
+// Two windows of 16 steps, then 240 on the choice: the first choice holds from step 32 to 271. A
+// window on two threads that is a clear loss ends after kCut steps (ThreadGovernorSettings::cut_steps).
 constexpr int kWindow = 16;
+constexpr int kCut = 4;
 constexpr int kPair = 2 * kWindow;
 constexpr int kHold = 240;
 
@@ -87,9 +89,10 @@ TEST(ThreadGovernor, TimesAgainAndFollowsTheMachine) {
   run_steps(governor, clock, kPair + kHold, [](int t) { return t == 1 ? 1.0 : 0.5; });
   const long most_before = governor.steps_on_most();
   EXPECT_EQ(most_before, kPair + kHold - kWindow);
-  // The next pair times one thread first (the order alternates), then two; then it holds.
+  // The next pair times two threads first (the order alternates), and cuts that window short
+  // after kCut steps, a clear loss against the last pair's one-thread step; then it holds on one.
   run_steps(governor, clock, kPair + kHold, [](int t) { return t == 1 ? 1.0 : 3.0; });
-  EXPECT_EQ(governor.steps_on_most() - most_before, kWindow);
+  EXPECT_EQ(governor.steps_on_most() - most_before, kCut);
 }
 
 // A few dear steps (an impact group, solved on one thread whatever the count) in the window on
@@ -105,9 +108,10 @@ TEST(ThreadGovernor, ADearStepOrTwoDoNotDecide) {
 // Another program holds the other core for the whole run (two Vajont section I runs at once:
 // a step on two threads took about ten times one on one). Each clear loss in a row doubles the
 // hold (240, 480, 960, 1920, 1920 steps), so over section I's 5003 steps the windows on two
-// threads are five, 80 steps, not the nineteen of a fixed hold (304 steps).
+// threads are five, not the nineteen of a fixed hold (304 steps); and each ends after kCut
+// steps, once their median is a clear loss: 20 steps at ten times the cost, not 80.
 TEST(ThreadGovernor, APersistentClearLossIsTimedLessAndLessOften) {
-  EXPECT_EQ(steps_timing_the_other(10.0), 5 * kWindow);
+  EXPECT_EQ(steps_timing_the_other(10.0), 5 * kCut);
 }
 
 // A mild loss (a scene too small to share: section I alone, two threads 10-25 % slower) keeps
@@ -121,14 +125,16 @@ TEST(ThreadGovernor, AMildLossKeepsTheFixedHold) {
 TEST(ThreadGovernor, TheBackOffEndsWhenTwoThreadsWinAgain) {
   Steps clock;
   ThreadGovernor governor = make(2, clock);
-  run_steps(governor, clock, 1808, [](int t) { return t == 1 ? 1.0 : 10.0; });  // four pairs; a hold of 1920 begins
-  run_steps(governor, clock, 1920, [](int t) { return t == 1 ? 1.0 : 0.5; });   // the hold runs out on one thread
+  // Four pairs, each a window of 16 on one thread and one of kCut on two, and holds of 240, 480
+  // and 960: a hold of 1920 begins at step 1760.
+  run_steps(governor, clock, 1760, [](int t) { return t == 1 ? 1.0 : 10.0; });
+  run_steps(governor, clock, 1920, [](int t) { return t == 1 ? 1.0 : 0.5; });  // the hold runs out on one thread
   const long most_before = governor.steps_on_most();
-  EXPECT_EQ(most_before, 4 * kWindow);
+  EXPECT_EQ(most_before, 4 * kCut);
   run_steps(governor, clock, kPair + kHold, [](int t) { return t == 1 ? 1.0 : 0.5; });
   EXPECT_EQ(governor.steps_on_most() - most_before, kWindow + kHold);  // its window on two, then the hold
-  // A clear loss now holds 240 steps, not twice the last hold.
-  run_steps(governor, clock, kPair + kHold, [](int t) { return t == 1 ? 1.0 : 10.0; });
+  // A clear loss (its window on two cut short) now holds 240 steps, not twice the last hold.
+  run_steps(governor, clock, kCut + kWindow + kHold, [](int t) { return t == 1 ? 1.0 : 10.0; });
   const long one_before = governor.steps_on_one();
   run_steps(governor, clock, kPair, [](int t) { return t == 1 ? 1.0 : 0.5; });
   EXPECT_EQ(governor.steps_on_one() - one_before, kWindow);
@@ -156,9 +162,9 @@ TEST(ThreadGovernor, ALoadArrivingInALongHoldEndsItWithinEightSteps) {
   run_steps(governor, clock, 1808, [](int t) { return t == 1 ? 1.0 : 0.5; });  // four pairs; a hold of 1920 begins
   const long most_before = governor.steps_on_most();
   run_steps(governor, clock, 200, [](int t) { return t == 1 ? 1.0 : 10.0; });
-  // Eight slow steps of the hold, then the pair's window on two threads first (the order
-  // alternates: four pairs so far), then its window on one and the hold on one.
-  EXPECT_EQ(governor.steps_on_most() - most_before, 8 + kWindow);
+  // Eight slow steps of the hold, then the pair's window on one thread (the order alternates:
+  // four pairs so far), then its window on two, cut short after kCut steps, and the hold on one.
+  EXPECT_EQ(governor.steps_on_most() - most_before, 8 + kCut);
 }
 
 // Dear steps scattered through a long hold (an impact group every eighth step, ten times a
