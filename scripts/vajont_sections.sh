@@ -25,12 +25,12 @@ size_of() {  # seed Table 2 mean block sizes, m (cases/vajont/vajont.yaml)
   esac
 }
 
-# Since model revision 2026-11-27.4 the scene runs 10 ms steps of three substeps with split
-# impulses; sections VIII-X (7.4, 6.6 and 5.7 m blocks) overlap by more than 1 % at that step,
-# so they run at 5 ms x 4 (cases/vajont/vajont.yaml says why beside its step).
+# The scene runs 20 ms steps of four substeps of at most 0.5 m (10 ms x 3, 0.25 m until
+# 2026-12-07); sections VIII-X (7.4, 6.6 and 5.7 m blocks) overlap by more than 1 % at 10 ms,
+# so they run at 5 ms x 4 and 0.25 m (cases/vajont/vajont.yaml says why beside its step).
 step_of() {
   case $1 in
-    VIII|IX|X) echo "--set time.step=0.005 --set time.substeps=4" ;;
+    VIII|IX|X) echo "--set time.step=0.005 --set time.substeps=4 --set control.max_displacement_ratio=0.0002" ;;
     *) echo "" ;;
   esac
 }
