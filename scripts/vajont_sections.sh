@@ -25,8 +25,8 @@ size_of() {  # seed Table 2 mean block sizes, m (cases/vajont/vajont.yaml)
   esac
 }
 
-# The scene runs 20 ms steps of four substeps of at most 0.5 m (10 ms x 3, 0.25 m until
-# 2026-12-07); sections VIII-X (7.4, 6.6 and 5.7 m blocks) overlap by more than 1 % at 10 ms,
+# The scene runs 20 ms steps of four substeps, each step moving a block 0.5 m at most (10 ms x 3
+# and 0.25 m until 2026-12-07); sections VIII-X (7.4, 6.6 and 5.7 m blocks) overlap by more than 1 % at 10 ms,
 # so they run at 5 ms x 4 and 0.25 m (cases/vajont/vajont.yaml says why beside its step).
 step_of() {
   case $1 in
