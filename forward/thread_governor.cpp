@@ -95,9 +95,9 @@ void ThreadGovernor::end_step() {
 
 bool ThreadGovernor::clear_loss_so_far() {
   if (current_ == 1 || steps_in_phase_ < settings_.cut_steps) return false;
+  // median() reorders in place; a window's order means nothing, so no copy is needed.
   const double one = seconds_[0].empty() ? one_median_ : median(seconds_[0]);
-  std::vector<double> so_far = seconds_[1];
-  return one > 0.0 && median(so_far) > settings_.clear_loss * one;
+  return one > 0.0 && median(seconds_[1]) > settings_.clear_loss * one;
 }
 
 }  // namespace ddafit
