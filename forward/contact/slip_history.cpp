@@ -4,6 +4,8 @@
 #include <cmath>
 #include <utility>
 
+#include <omp.h>
+
 #include "forward/contact/contact_law.hpp"
 #include "forward/kinematics.hpp"
 #include "forward/parallel.hpp"
@@ -174,18 +176,58 @@ void reset_histories(const BlockSystem& s, ContactSet& contacts) {
     if (m.history >= 0) m.friction = contacts.histories[m.history].friction;
 }
 
+namespace {
+
+// Each face's largest slip of its points (gather_slip) and, under thermal pressurization, their
+// load. The largest slip does not depend on the order it is gathered in: each thread gathers
+// its contiguous share of the manifolds into its own copy of the faces, and the copies are
+// then merged face by face, so the faces' cache lines are never shared between the threads
+// (gathered straight into the histories with a compare-and-swap, tried 2026-11-29, the two
+// threads fought over them and the main thread's share did not fall). A load is a sum, whose
+// rounding does depend on the order: with shear bands it is gathered in manifold order, on one
+// thread.
+void gather_points(ContactSet& contacts) {
+  const std::vector<ContactManifold>& manifolds = contacts.manifolds;
+  std::vector<SlipHistory>& histories = contacts.histories;
+  const long n = static_cast<long>(manifolds.size());
+  const bool bands = std::any_of(contacts.shear_bands.begin(), contacts.shear_bands.end(),
+                                 [](const laws::DiffusionGrid& g) { return !g.empty(); });
+  if (bands || n < kParallelMinimum || omp_get_max_threads() < 2) {
+    for (const ContactManifold& m : manifolds)
+      if (m.history >= 0)
+        for (int q = 0; q < m.point_count; ++q) {
+          SlipHistory& h = histories[m.history];
+          gather_slip(h, m.points[q].slip);
+          if (!h.band_column.empty()) h.normal_load += m.points[q].normal_load;
+        }
+    return;
+  }
+  const long faces = static_cast<long>(histories.size());
+  std::vector<double> largest(static_cast<size_t>(omp_get_max_threads() * faces), 0.0);
+  int used = 1;
+#pragma omp parallel
+  {
+    const int t = omp_get_thread_num(), threads = omp_get_num_threads();
+#pragma omp single
+    used = threads;
+    double* mine = largest.data() + t * faces;
+    const ThreadShare share = thread_share(n, t, threads);
+    for (long k = share.first; k < share.last; ++k) {
+      const ContactManifold& m = manifolds[k];
+      if (m.history >= 0)
+        for (int q = 0; q < m.point_count; ++q) mine[m.history] = std::max(mine[m.history], m.points[q].slip);
+    }
+#pragma omp barrier
+#pragma omp for schedule(static)
+    for (long f = 0; f < faces; ++f)
+      for (int u = 0; u < used; ++u) gather_slip(histories[f], largest[u * faces + f]);
+  }
+}
+
+}  // namespace
+
 void advance_histories(const BlockSystem& s, ContactSet& contacts, double duration) {
-  // On one thread: the manifolds of a face are scattered through the list. Gathered in
-  // parallel with a compare-and-swap on each face's largest slip (tried 2026-11-29), the
-  // two threads shared the histories' cache lines, and the main thread's share did not fall
-  // (section VII degraded: 2.8 s before, 3.1 s after, the other thread's 1.0 -> 2.3 s).
-  for (const ContactManifold& m : contacts.manifolds)
-    if (m.history >= 0)
-      for (int q = 0; q < m.point_count; ++q) {
-        SlipHistory& h = contacts.histories[m.history];
-        gather_slip(h, m.points[q].slip);
-        if (!h.band_column.empty()) h.normal_load += m.points[q].normal_load;
-      }
+  gather_points(contacts);
   // Each face's law on its own: parallel, and the same numbers on any thread count.
   std::vector<SlipHistory>& histories = contacts.histories;
   const long n = static_cast<long>(histories.size());
