@@ -1,6 +1,7 @@
 // How the substep solver's sweeps walk the manifolds (docs/theory.md §13, "Threads and
 // determinism"): colour by colour; each thread takes one contiguous share of a colour; and
-// within its share a thread updates a few manifolds at once, their points in turn.
+// within its share a thread updates a few manifolds at once, their points in turn. The extra
+// sweeps in list order walk it group by group (sweep_groups, list_groups.hpp).
 //
 // Why in batches: a manifold's passes are a chain of dependent updates (each impulse reads
 // the block velocities the one before it wrote), so one manifold at a time leaves the core
@@ -19,6 +20,7 @@
 
 #include "forward/contact/contact_types.hpp"
 #include "forward/parallel.hpp"
+#include "forward/substep/list_groups.hpp"
 #include "forward/substep/prepare_contacts.hpp"
 
 namespace ddafit {
@@ -111,6 +113,39 @@ void converge_passes(ContactManifold* const* m, int passes, double tolerance, Po
       }
     for (int i = 0; i < N; ++i)
       if (open[i] && largest[i].change <= tolerance * largest[i].scale) open[i] = false;
+  }
+}
+
+// Below this many manifold updates (the list's length times its sweeps) the groups run on the
+// calling thread: the fork and barrier would cost more (parallel.hpp).
+inline constexpr long kGroupParallelMinimum = 256;
+
+// `sweeps` sweeps of each group, in list order: solve(k, flag) updates manifold k, `flag` a
+// char of the calling thread's own for the caller's use. Each thread takes a contiguous run of
+// groups, split by their manifolds' count (thread_share over ids).
+template <class Solve>
+void sweep_groups(const ListGroups& groups, int sweeps, Solve&& solve) {
+  const int count = static_cast<int>(groups.first.size()) - 1;
+  const auto run = [&](int from, int to) {
+    char flag = 0;
+    for (int g = from; g < to; ++g)
+      for (int sweep = 0; sweep < sweeps; ++sweep)
+        for (int i = groups.first[g]; i < groups.first[g + 1]; ++i) solve(groups.ids[i], flag);
+  };
+  const long n = static_cast<long>(groups.ids.size());
+  if (count < 2 || n * sweeps < kGroupParallelMinimum) {
+    run(0, count);
+    return;
+  }
+#pragma omp parallel
+  {
+    const ThreadShare share = thread_share(n, omp_get_thread_num(), omp_get_num_threads());
+    // The groups that start in this thread's share of the ids.
+    int from = 0, to = 0;
+    while (from < count && groups.first[from] < share.first) ++from;
+    to = from;
+    while (to < count && groups.first[to] < share.last) ++to;
+    run(from, to);
   }
 }
 

@@ -1,5 +1,7 @@
 #include "forward/substep/converge_heavy.hpp"
 
+#include "forward/substep/coloured_sweep.hpp"
+
 namespace ddafit {
 
 const std::vector<int>& heavy_neighbourhood(const std::vector<ContactManifold>& manifolds,
@@ -27,9 +29,15 @@ const std::vector<int>& heavy_neighbourhood(const std::vector<ContactManifold>& 
 void converge_heavy(std::vector<ContactManifold>& manifolds, const SweepSettings& relax,
                     const HeavyNeighbours& settings, SweepState& st) {
   const std::vector<int>& list = heavy_neighbourhood(manifolds, settings, st);
+  if (list.empty() || settings.sweeps <= 0) return;
+  if (!st.heavy_groups) {
+    st.heavy_groups.emplace();
+    st.group_root.resize(st.masses.size(), -1);
+    group_by_blocks(list, pair_blocks(manifolds, st), st.masses, st.group_root, *st.heavy_groups);
+  }
   const double inv_h = 1.0 / relax.h;
-  for (int sweep = 0; sweep < settings.sweeps && !list.empty(); ++sweep)
-    for (const int k : list) solve_manifold(manifolds[k], st.deep[k], relax, inv_h, st);
+  sweep_groups(*st.heavy_groups, settings.sweeps,
+               [&](int k, char&) { solve_manifold(manifolds[k], st.deep[k], relax, inv_h, st); });
 }
 
 }  // namespace ddafit

@@ -242,24 +242,43 @@ bool closing_deep(const ContactManifold& m, double h, const SweepState& st) {
 // Far blocks: moving blocks outside `involved` that a listed manifold touches. A far block
 // that one of its unlisted manifolds would now carry deep joins the neighbourhood with all
 // its manifolds. Returns whether any joined.
+// Whether a far block's manifold closes deep does not change while blocks join (no sweep runs
+// in between), so it is read first for every manifold of every far block, in parallel
+// (`closing`, per manifold: 1 closes deep, 0 not, -1 not read); the joining, in list order,
+// then only looks it up.
 bool bring_in_driven(const std::vector<ContactManifold>& manifolds, const BlockManifolds& of_block, double h,
                      const SweepState& st, std::vector<char>& involved, std::vector<char>& listed,
-                     std::vector<int>& list) {
-  bool grew = false;
+                     std::vector<int>& list, std::vector<signed char>& closing) {
   const size_t n = list.size();
+  std::vector<int> far;  // the far blocks' unlisted manifolds, each once
+  for (size_t i = 0; i < n; ++i) {
+    const ContactManifold& m = manifolds[list[i]];
+    for (const int b : {m.block_a, m.block_b}) {
+      if (involved[b] || !st.masses[b].moves) continue;
+      for (int j = of_block.first[b]; j < of_block.first[b + 1]; ++j) {
+        const int k = of_block.ids[j];
+        if (!listed[k] && closing[k] < 0) closing[k] = 0, far.push_back(k);
+      }
+    }
+  }
+  const long count = static_cast<long>(far.size());
+#pragma omp parallel for schedule(static) if (count >= kParallelMinimum)
+  for (long i = 0; i < count; ++i) closing[far[i]] = closing_deep(manifolds[far[i]], h, st) ? 1 : 0;
+  bool grew = false;
   for (size_t i = 0; i < n; ++i) {
     const ContactManifold& m = manifolds[list[i]];
     for (const int b : {m.block_a, m.block_b}) {
       if (involved[b] || !st.masses[b].moves) continue;
       bool driven = false;
       for (int j = of_block.first[b]; j < of_block.first[b + 1] && !driven; ++j)
-        driven = !listed[of_block.ids[j]] && closing_deep(manifolds[of_block.ids[j]], h, st);
+        driven = !listed[of_block.ids[j]] && closing[of_block.ids[j]] > 0;
       if (!driven) continue;
       involved[b] = 1, grew = true;
       for (int j = of_block.first[b]; j < of_block.first[b + 1]; ++j)
         if (!listed[of_block.ids[j]]) listed[of_block.ids[j]] = 1, list.push_back(of_block.ids[j]);
     }
   }
+  for (const int k : far) closing[k] = -1;
   return grew;
 }
 
@@ -281,18 +300,20 @@ void converge_deep(std::vector<ContactManifold>& manifolds, const SweepSettings&
   std::vector<int> list = deep_neighbourhood(manifolds, st, involved);
   if (list.empty()) return;
   const double inv_h = 1.0 / relax.h;
-  char ignored = 0;
+  ListGroups groups;
+  st.group_root.resize(st.masses.size(), -1);
   const auto sweeps = [&] {
-    for (int it = 0; it < iterations; ++it)
-      for (const int k : list) solve_manifold(manifolds[k], ignored, relax, inv_h, st);
+    group_by_blocks(list, pair_blocks(manifolds, st), st.masses, st.group_root, groups);
+    sweep_groups(groups, iterations, [&](int k, char& ignored) { solve_manifold(manifolds[k], ignored, relax, inv_h, st); });
   };
   sweeps();
   if (closing_h <= 0.0) return;
   const BlockManifolds& of_block = block_manifolds(manifolds, st);
   std::vector<char> listed(manifolds.size(), 0);
   for (const int k : list) listed[k] = 1;
+  std::vector<signed char> closing(manifolds.size(), -1);
   for (int round = 0; round < kDrivenRounds; ++round) {
-    if (!bring_in_driven(manifolds, of_block, closing_h, st, involved, listed, list)) break;
+    if (!bring_in_driven(manifolds, of_block, closing_h, st, involved, listed, list, closing)) break;
     sweeps();
   }
 }

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "forward/block_system.hpp"
+#include "forward/substep/list_groups.hpp"
 #include "forward/substep/substep_types.hpp"
 
 namespace ddafit {
@@ -61,6 +62,8 @@ struct SweepState {
   // The manifolds of blocks beside a much heavier one (converge_heavy.hpp), built when first
   // needed in a step; reset with of_block.
   std::optional<std::vector<int>> heavy;
+  std::optional<ListGroups> heavy_groups;  // heavy, split by list_groups.hpp; reset with it
+  std::vector<int> group_root;  // per block, all -1: group_by_blocks' scratch
   // Per block: substeps left in which its manifolds are held to a share of the impact margins
   // after a group solved for an impact took it in, or a weight-bearing joint of it was struck
   // (converge_impacts.cpp: kSettleShare, mark_struck). Kept
