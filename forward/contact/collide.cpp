@@ -138,14 +138,14 @@ constexpr double kCutDepthRatio = 2.0 * kFlushRatio;
 // with one normal. The later manifold's copy is dropped; a manifold left without points
 // goes. Two springs at one place doubled the implicit solver's stiffness where a block
 // landed on such a corner, and the landing threw it (docs/theory.md §3, Flush neighbours).
-void drop_shared_corners(const BlockSystem& s, std::vector<ContactManifold>& manifolds, double slop) {
+// `free_on_fixed`, per manifold: its free block where the other is fixed, else -1 (set where the
+// manifolds are built, in parallel: a scan of the manifolds here read a 576-byte manifold for
+// its two block ids, on one thread, every step).
+void drop_shared_corners(std::vector<ContactManifold>& manifolds, const std::vector<int>& free_on_fixed, double slop) {
   // (free block, manifold) for the manifolds between a free and a fixed block, by block.
   std::vector<std::pair<int, int>> on_fixed;
-  for (int k = 0; k < static_cast<int>(manifolds.size()); ++k) {
-    const ContactManifold& m = manifolds[k];
-    const bool fa = s.blocks[m.block_a].fixed, fb = s.blocks[m.block_b].fixed;
-    if (fa != fb) on_fixed.emplace_back(fa ? m.block_b : m.block_a, k);
-  }
+  for (int k = 0; k < static_cast<int>(manifolds.size()); ++k)
+    if (free_on_fixed[k] >= 0) on_fixed.emplace_back(free_on_fixed[k], k);
   std::sort(on_fixed.begin(), on_fixed.end());
   constexpr double kSameNormal = 1e-6;  // 1 - cos of the angle between the two normals
   bool dropped = false;
@@ -205,6 +205,9 @@ std::string collide(const BlockSystem& s, ContactDetection& detection, const std
   // static halves one thread waited for the other (on Vajont section VII degraded's first
   // 10 s, busy 4.5 s against 6.7 s). Alternating the two step by step in one run, this pass
   // took 2.9 s in static halves and 2.6-2.7 s in chunks of 64 (docs/performance.md).
+  // Per pair of boxes, whether its pieces touch: read below on one thread from these bytes, not
+  // from the pairs' geometry (a Manifold each).
+  std::vector<char> touches(pairs.size());
 #pragma omp parallel for schedule(dynamic, 64) if (n >= kParallelMinimum)
   for (long k = 0; k < n; ++k) {
     const auto [a, b] = pairs[k];
@@ -258,10 +261,11 @@ std::string collide(const BlockSystem& s, ContactDetection& detection, const std
     geometry[k] = collide_polygons(piece_a, piece_b, ms,
                                    solid.subspan(first_a, na), solid.subspan(first_b, nb), reflex.subspan(first_a, na),
                                    reflex.subspan(first_b, nb));
+    touches[k] = geometry[k].point_count > 0;
   }
   std::vector<int> touching;
   for (long k = 0; k < n; ++k)
-    if (geometry[k].point_count > 0) touching.push_back(static_cast<int>(k));
+    if (touches[k]) touching.push_back(static_cast<int>(k));
 
   std::vector<ContactManifold>& previous = detection.previous;
   previous.swap(contacts.manifolds);
@@ -270,7 +274,9 @@ std::string collide(const BlockSystem& s, ContactDetection& detection, const std
   // manifolds a step on Vajont section VII (docs/performance.md).
   manifolds.resize(touching.size());
   const long t = static_cast<long>(touching.size());
-#pragma omp parallel for schedule(static) if (t >= kParallelMinimum)
+  std::vector<int> free_on_fixed(touching.size());  // drop_shared_corners
+  bool no_interface = false;                        // a pair touches with no interface defined
+#pragma omp parallel for schedule(static) reduction(|| : no_interface) if (t >= kParallelMinimum)
   for (long j = 0; j < t; ++j) {
     const int k = touching[j];
     const auto [a, b] = pairs[k];
@@ -282,6 +288,9 @@ std::string collide(const BlockSystem& s, ContactDetection& detection, const std
     out.block_a = shapes.pieces[a].block;
     out.block_b = shapes.pieces[b].block;
     out.interface = s.interface_between(out.block_a, out.block_b);
+    no_interface = no_interface || out.interface < 0;
+    const bool fixed_a = s.blocks[out.block_a].fixed, fixed_b = s.blocks[out.block_b].fixed;
+    free_on_fixed[j] = fixed_a == fixed_b ? -1 : fixed_a ? out.block_b : out.block_a;
     out.normal = m.normal;
     out.tangent = Vec2(m.normal.y(), -m.normal.x());
     out.point_count = m.point_count;
@@ -318,11 +327,12 @@ std::string collide(const BlockSystem& s, ContactDetection& detection, const std
       }
     }
   }
-  drop_shared_corners(s, manifolds, settings.linear_slop);
+  drop_shared_corners(manifolds, free_on_fixed, settings.linear_slop);
   assign_histories(s, contacts, detection.previous_histories);
   predict_first_slip(s, contacts, settings.slip_step);
   std::string problem;
-  for (const ContactManifold& m : manifolds) {
+  for (size_t k = 0; no_interface && k < manifolds.size(); ++k) {
+    const ContactManifold& m = manifolds[k];
     if (m.interface >= 0) continue;
     problem = "blocks '" + s.block_names[m.block_a] + "' and '" + s.block_names[m.block_b] + "' (groups '" +
               s.group_names[s.blocks[m.block_a].group] + "', '" + s.group_names[s.blocks[m.block_b].group] +

@@ -47,6 +47,38 @@ void heat_shear_band(const BlockSystem& s, const ContactSet& contacts, SlipHisto
   h.normal_load = 0.0;
 }
 
+// Per face (history), the largest of value(m, q) >= 0 over the points of its manifolds, 0 for a
+// face with none; value may return 0 for a point that does not count. A largest value does not
+// depend on the order it is gathered in: each thread gathers its contiguous share of the
+// manifolds into its own copy of the faces, and the copies are merged face by face, so the
+// faces' cache lines are never shared between threads (gathered straight into the histories
+// with a compare-and-swap, tried 2026-11-29, the two threads fought over them and the main
+// thread's share did not fall). It ran on one thread, reading every 576-byte manifold each
+// substep while the other thread waited.
+template <class Value>
+void largest_per_face(const std::vector<ContactManifold>& manifolds, long faces, Value&& value,
+                      std::vector<double>& out) {
+  const long n = static_cast<long>(manifolds.size());
+  const int most = n >= kParallelMinimum ? omp_get_max_threads() : 1;
+  std::vector<double> largest(static_cast<size_t>(most * faces), 0.0);
+  out.assign(static_cast<size_t>(faces), 0.0);
+#pragma omp parallel num_threads(most) if (most > 1)
+  {
+    const int t = omp_get_thread_num(), threads = omp_get_num_threads();
+    double* mine = largest.data() + t * faces;
+    const ThreadShare share = thread_share(n, t, threads);
+    for (long k = share.first; k < share.last; ++k) {
+      const ContactManifold& m = manifolds[k];
+      if (m.history >= 0)
+        for (int q = 0; q < m.point_count; ++q) mine[m.history] = std::max(mine[m.history], value(m, q));
+    }
+#pragma omp barrier
+#pragma omp for schedule(static)
+    for (long f = 0; f < faces; ++f)
+      for (int u = 0; u < threads; ++u) out[f] = std::max(out[f], largest[u * faces + f]);
+  }
+}
+
 }  // namespace
 
 // In four passes, so that the 136-byte histories move once, in parallel, straight to their
@@ -129,20 +161,23 @@ void assign_histories(const BlockSystem& s, ContactSet& contacts, std::vector<Sl
 void predict_first_slip(const BlockSystem& s, ContactSet& contacts, double step) {
   if (step <= 0.0) return;
   std::vector<SlipHistory>& histories = contacts.histories;
-  std::vector<double> speed;  // per history: its fastest point's sliding speed, if it has not slid
-  for (const ContactManifold& m : contacts.manifolds) {
-    if (m.history < 0) continue;
-    const SlipHistory& h = histories[m.history];
-    if (h.slip != 0.0 || h.settled) continue;  // a last increment here is this prediction's own
-    if (speed.empty()) speed.assign(histories.size(), 0.0);
-    const Vec3 va = s.blocks[m.block_a].velocity.head<3>(), vb = s.blocks[m.block_b].velocity.head<3>();
-    for (int q = 0; q < m.point_count; ++q) {
-      const ContactPoint& p = m.points[q];
-      const double v = std::abs(m.tangent.dot(velocity_at(vb, p.rb) - velocity_at(va, p.ra)));
-      speed[m.history] = std::max(speed[m.history], v);
-    }
-  }
-  if (speed.empty()) return;
+  // The faces that have not slid (a last increment here is this prediction's own).
+  std::vector<char> first(histories.size());
+  bool any_first = false;
+  for (size_t k = 0; k < histories.size(); ++k)
+    any_first |= first[k] = histories[k].slip == 0.0 && !histories[k].settled;
+  if (!any_first) return;
+  // Per such face, its fastest point's sliding speed.
+  std::vector<double> speed;
+  largest_per_face(
+      contacts.manifolds, static_cast<long>(histories.size()),
+      [&](const ContactManifold& m, int q) {
+        if (!first[m.history]) return 0.0;
+        const ContactPoint& p = m.points[q];
+        const Vec3 va = s.blocks[m.block_a].velocity.head<3>(), vb = s.blocks[m.block_b].velocity.head<3>();
+        return std::abs(m.tangent.dot(velocity_at(vb, p.rb) - velocity_at(va, p.ra)));
+      },
+      speed);
   bool any = false;
   for (size_t k = 0; k < histories.size(); ++k) {
     if (speed[k] <= 0.0) continue;
@@ -153,8 +188,13 @@ void predict_first_slip(const BlockSystem& s, ContactSet& contacts, double step)
     any = true;
   }
   if (!any) return;
-  for (ContactManifold& m : contacts.manifolds)
+  std::vector<ContactManifold>& manifolds = contacts.manifolds;
+  const long n = static_cast<long>(manifolds.size());
+#pragma omp parallel for schedule(static) if (n >= kParallelMinimum)
+  for (long k = 0; k < n; ++k) {
+    ContactManifold& m = manifolds[k];
     if (m.history >= 0 && speed[m.history] > 0.0) m.friction = histories[m.history].friction;
+  }
 }
 
 void prepare_shear_bands(const BlockSystem& s, double duration, ContactSet& contacts) {
@@ -179,20 +219,14 @@ void reset_histories(const BlockSystem& s, ContactSet& contacts) {
 namespace {
 
 // Each face's largest slip of its points (gather_slip) and, under thermal pressurization, their
-// load. The largest slip does not depend on the order it is gathered in: each thread gathers
-// its contiguous share of the manifolds into its own copy of the faces, and the copies are
-// then merged face by face, so the faces' cache lines are never shared between the threads
-// (gathered straight into the histories with a compare-and-swap, tried 2026-11-29, the two
-// threads fought over them and the main thread's share did not fall). A load is a sum, whose
-// rounding does depend on the order: with shear bands it is gathered in manifold order, on one
-// thread.
+// load. A load is a sum, whose rounding depends on the order: with shear bands it is gathered
+// in manifold order, on one thread; the largest slip is gathered on all (largest_per_face).
 void gather_points(ContactSet& contacts) {
   const std::vector<ContactManifold>& manifolds = contacts.manifolds;
   std::vector<SlipHistory>& histories = contacts.histories;
-  const long n = static_cast<long>(manifolds.size());
   const bool bands = std::any_of(contacts.shear_bands.begin(), contacts.shear_bands.end(),
                                  [](const laws::DiffusionGrid& g) { return !g.empty(); });
-  if (bands || n < kParallelMinimum || omp_get_max_threads() < 2) {
+  if (bands) {
     for (const ContactManifold& m : manifolds)
       if (m.history >= 0)
         for (int q = 0; q < m.point_count; ++q) {
@@ -202,26 +236,10 @@ void gather_points(ContactSet& contacts) {
         }
     return;
   }
-  const long faces = static_cast<long>(histories.size());
-  std::vector<double> largest(static_cast<size_t>(omp_get_max_threads() * faces), 0.0);
-  int used = 1;
-#pragma omp parallel
-  {
-    const int t = omp_get_thread_num(), threads = omp_get_num_threads();
-#pragma omp single
-    used = threads;
-    double* mine = largest.data() + t * faces;
-    const ThreadShare share = thread_share(n, t, threads);
-    for (long k = share.first; k < share.last; ++k) {
-      const ContactManifold& m = manifolds[k];
-      if (m.history >= 0)
-        for (int q = 0; q < m.point_count; ++q) mine[m.history] = std::max(mine[m.history], m.points[q].slip);
-    }
-#pragma omp barrier
-#pragma omp for schedule(static)
-    for (long f = 0; f < faces; ++f)
-      for (int u = 0; u < used; ++u) gather_slip(histories[f], largest[u * faces + f]);
-  }
+  std::vector<double> largest;
+  largest_per_face(manifolds, static_cast<long>(histories.size()),
+                   [](const ContactManifold& m, int q) { return m.points[q].slip; }, largest);
+  for (size_t f = 0; f < histories.size(); ++f) gather_slip(histories[f], largest[f]);
 }
 
 }  // namespace
