@@ -65,9 +65,10 @@ std::vector<std::pair<int, int>> find_pairs(const BlockSystem& s, const ContactS
     double lo_x, hi_x, lo_y, hi_y;
     int piece;
   };
-  std::vector<Box> boxes;
-  boxes.reserve(shapes.pieces.size());
-  for (int p = 0; p < static_cast<int>(shapes.pieces.size()); ++p) {
+  const int pieces = static_cast<int>(shapes.pieces.size());
+  std::vector<Box> boxes(shapes.pieces.size());
+#pragma omp parallel for schedule(static) if (pieces >= kParallelMinimum)
+  for (int p = 0; p < pieces; ++p) {
     const ConvexPiece& piece = shapes.pieces[p];
     Box box{1e300, -1e300, 1e300, -1e300, p};
     for (int k = piece.first; k < piece.first + piece.count; ++k) {
@@ -84,7 +85,7 @@ std::vector<std::pair<int, int>> find_pairs(const BlockSystem& s, const ContactS
       box.lo_y -= grow;
       box.hi_y += grow;
     }
-    boxes.push_back(box);
+    boxes[p] = box;
   }
   std::sort(boxes.begin(), boxes.end(), [](const Box& a, const Box& b) { return a.lo_x < b.lo_x; });
   // The sweep over x, in parallel: each thread sweeps from its own share of the boxes and
