@@ -11,7 +11,7 @@
 // each group swept alone in list order, its sweeps one after another, gives the numbers of the
 // whole list swept in order to the bit, on any number of threads. On one thread these sweeps
 // were about a tenth of section VII's main thread while the other waited (docs/performance.md,
-// "The extra sweeps in groups").
+// "Section VII: the main thread's one-thread passes shared").
 #pragma once
 
 #include <array>
