@@ -12,6 +12,7 @@
 #include "forward/io/scene_reader.hpp"
 #include "forward/simulation.hpp"
 #include "forward/substep/list_groups.hpp"
+#include "tests/threads_agree.hpp"
 
 namespace ddafit {
 namespace {
@@ -102,27 +103,8 @@ TEST(ListGroups, SplitTheListByTheMovingBlocksItsManifoldsShare) {
 TEST(ListGroups, VajontSectionIOnOneAndTwoThreadsAgreesBitForBit) {
   const io::Overrides overrides = {{"mesh.block_size", "16.0"}, {"time.duration", "4"},
                                    {"time.integrator", "substep"}};
-  Scene one = io::read_scene(std::string(DDAFIT_CASES_DIR) + "/vajont/degraded.yaml", overrides);
-  one.options.threads = 1;
-  Scene two = one;
-  two.options.threads = 2;
-  // Two threads first: the run on one thread then leaves OpenMP at one thread, as CTest starts
-  // every test, for the tests that follow in this process.
-  const SimulationResult b = simulate(two);
-  const SimulationResult a = simulate(one);
-  ASSERT_EQ(a.summary.status, RunStatus::Completed) << a.summary.message;
-  ASSERT_EQ(b.summary.status, RunStatus::Completed) << b.summary.message;
-  EXPECT_EQ(a.summary.run.steps, b.summary.run.steps);
-  ASSERT_EQ(a.history.size(), b.history.size());
-  ASSERT_FALSE(a.history.empty());
-  int mismatches = 0;
-  for (size_t i = 0; i < a.history.size() && mismatches < 10; ++i) {
-    const HistoryRow &x = a.history[i], &y = b.history[i];
-    const bool same = x.time == y.time && x.position == y.position && x.velocity == y.velocity;
-    EXPECT_TRUE(same) << "row " << i << " at t = " << x.time << ": (" << x.position.transpose() << ") against ("
-                      << y.position.transpose() << ")";
-    mismatches += !same;
-  }
+  const Scene scene = io::read_scene(std::string(DDAFIT_CASES_DIR) + "/vajont/degraded.yaml", overrides);
+  expect_same_on_one_and_two_threads(scene, "Vajont section I at 16 m");
 }
 
 }  // namespace
