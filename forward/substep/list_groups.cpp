@@ -55,7 +55,10 @@ void group_by_blocks(const std::vector<int>& list, const std::vector<std::array<
   for (size_t g = 0; g < size.size(); ++g) out.first[g + 1] = out.first[g] + size[g];
   out.ids.resize(list.size());
   std::vector<int> next(out.first.begin(), out.first.end() - 1);
-  for (size_t i = 0; i < list.size(); ++i) out.ids[static_cast<size_t>(next[static_cast<size_t>(group[i])]++)] = list[i];
+  for (size_t i = 0; i < list.size(); ++i) {
+    int& slot = next[static_cast<size_t>(group[i])];
+    out.ids[static_cast<size_t>(slot++)] = list[i];
+  }
 }
 
 }  // namespace ddafit

@@ -304,7 +304,8 @@ void converge_deep(std::vector<ContactManifold>& manifolds, const SweepSettings&
   st.group_root.resize(st.masses.size(), -1);
   const auto sweeps = [&] {
     group_by_blocks(list, pair_blocks(manifolds, st), st.masses, st.group_root, groups);
-    sweep_groups(groups, iterations, [&](int k, char& ignored) { solve_manifold(manifolds[k], ignored, relax, inv_h, st); });
+    sweep_groups(groups, iterations,
+                 [&](int k, char& ignored) { solve_manifold(manifolds[k], ignored, relax, inv_h, st); });
   };
   sweeps();
   if (closing_h <= 0.0) return;
