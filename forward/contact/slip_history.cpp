@@ -227,14 +227,17 @@ void reset_histories(const BlockSystem& s, ContactSet& contacts) {
 
 namespace {
 
-// Each face's largest slip of its points (gather_slip) and, under thermal pressurization, their
-// load. A load is a sum, whose rounding depends on the order: with shear bands it is gathered
-// in manifold order, on one thread; the largest slip is gathered on all (largest_per_face).
-void gather_points(ContactSet& contacts) {
+// Each face's largest slip of its points and, under thermal pressurization, their load. A load
+// is a sum, whose rounding depends on the order: with shear bands both are gathered into the
+// histories here, in manifold order, on one thread, and `largest` is left empty. Otherwise the
+// largest slips are gathered on all threads into `largest` (largest_per_face), for the
+// histories' own parallel loop to take (gather_slip).
+void gather_points(ContactSet& contacts, std::vector<double>& largest) {
   const std::vector<ContactManifold>& manifolds = contacts.manifolds;
   std::vector<SlipHistory>& histories = contacts.histories;
   const bool bands = std::any_of(contacts.shear_bands.begin(), contacts.shear_bands.end(),
                                  [](const laws::DiffusionGrid& g) { return !g.empty(); });
+  largest.clear();
   if (bands) {
     for (const ContactManifold& m : manifolds)
       if (m.history >= 0)
@@ -245,16 +248,15 @@ void gather_points(ContactSet& contacts) {
         }
     return;
   }
-  std::vector<double> largest;
   largest_per_face(manifolds, static_cast<long>(histories.size()),
                    [](const ContactManifold& m, int q) { return m.points[q].slip; }, largest);
-  for (size_t f = 0; f < histories.size(); ++f) gather_slip(histories[f], largest[f]);
 }
 
 }  // namespace
 
 void advance_histories(const BlockSystem& s, ContactSet& contacts, double duration) {
-  gather_points(contacts);
+  std::vector<double> largest;
+  gather_points(contacts, largest);
   // Each face's law on its own: parallel, and the same numbers on any thread count.
   std::vector<SlipHistory>& histories = contacts.histories;
   const long n = static_cast<long>(histories.size());
@@ -262,6 +264,7 @@ void advance_histories(const BlockSystem& s, ContactSet& contacts, double durati
 #pragma omp parallel for schedule(static) reduction(|| : any) if (n >= kParallelMinimum)
   for (long k = 0; k < n; ++k) {
     SlipHistory& h = histories[k];
+    if (!largest.empty()) gather_slip(h, largest[k]);
     if (!h.band_column.empty()) heat_shear_band(s, contacts, h, duration);
     add_slip(h, duration);
     refresh_friction(s, h);
