@@ -121,7 +121,6 @@ SweepSettings prepare_step(SubstepContext& w, double h) {
   remember_corner_points(w.contacts.manifolds, w.state);
   w.state.of_block.reset();
   w.state.heavy.reset();
-  w.state.heavy_groups.reset();
   const double g = w.scene.gravity.norm();
   w.colours = colour_manifolds(s, w.contacts.manifolds, g > 0.0 ? Vec2(-w.scene.gravity / g) : Vec2::Zero());
   if (w.sleep.enabled()) drop_sleeping_manifolds(w.contacts.manifolds, w.state.masses, w.colours);

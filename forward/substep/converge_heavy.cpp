@@ -4,12 +4,12 @@
 
 namespace ddafit {
 
-const std::vector<int>& heavy_neighbourhood(const std::vector<ContactManifold>& manifolds,
-                                            const HeavyNeighbours& settings, SweepState& st) {
+const ListGroups& heavy_neighbourhood(const std::vector<ContactManifold>& manifolds, const HeavyNeighbours& settings,
+                                      SweepState& st) {
   if (st.heavy) return *st.heavy;
-  st.heavy.emplace();
-  std::vector<int>& list = *st.heavy;
-  if (settings.sweeps <= 0 || settings.mass_ratio <= 0.0) return list;
+  ListGroups& groups = st.heavy.emplace();
+  groups.first.assign(1, 0);
+  if (settings.sweeps <= 0 || settings.mass_ratio <= 0.0) return groups;
   const std::vector<std::array<int, 2>>& pairs = pair_blocks(manifolds, st);
   // A block is light when a free neighbour's mass is at least mass_ratio times its own, that
   // is when its inverse mass is at least mass_ratio times the neighbour's.
@@ -22,21 +22,16 @@ const std::vector<int>& heavy_neighbourhood(const std::vector<ContactManifold>& 
     if (much_lighter(ma, mb, settings.mass_ratio)) light[a] = 1, any = true;
     if (much_lighter(mb, ma, settings.mass_ratio)) light[b] = 1, any = true;
   }
-  if (any) list = manifolds_of_blocks(pairs, light, st.masses);
-  return list;
+  if (any) group_by_blocks(manifolds_of_blocks(pairs, light, st.masses), pairs, st.masses, st.group_root, groups);
+  return groups;
 }
 
 void converge_heavy(std::vector<ContactManifold>& manifolds, const SweepSettings& relax,
                     const HeavyNeighbours& settings, SweepState& st) {
-  const std::vector<int>& list = heavy_neighbourhood(manifolds, settings, st);
-  if (list.empty() || settings.sweeps <= 0) return;
-  if (!st.heavy_groups) {
-    st.heavy_groups.emplace();
-    st.group_root.resize(st.masses.size(), -1);
-    group_by_blocks(list, pair_blocks(manifolds, st), st.masses, st.group_root, *st.heavy_groups);
-  }
+  const ListGroups& groups = heavy_neighbourhood(manifolds, settings, st);
+  if (groups.ids.empty() || settings.sweeps <= 0) return;
   const double inv_h = 1.0 / relax.h;
-  sweep_groups(*st.heavy_groups, settings.sweeps,
+  sweep_groups(groups, settings.sweeps,
                [&](int k, char&) { solve_manifold(manifolds[k], st.deep[k], relax, inv_h, st); });
 }
 

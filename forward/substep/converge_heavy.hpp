@@ -34,10 +34,11 @@ inline bool much_lighter(const BlockMass& light, const BlockMass& heavy, double 
   return light.inverse_mass >= ratio * heavy.inverse_mass;
 }
 
-// The manifolds of the light blocks (HeavyNeighbours::mass_ratio), in order; built once per
-// step (the manifolds and masses do not change within it) into state.heavy.
-const std::vector<int>& heavy_neighbourhood(const std::vector<ContactManifold>& manifolds,
-                                            const HeavyNeighbours& settings, SweepState& state);
+// The manifolds of the light blocks (HeavyNeighbours::mass_ratio), in order, in groups that share
+// no moving block (list_groups.hpp); built once per step (the manifolds and masses do not change
+// within it) into state.heavy.
+const ListGroups& heavy_neighbourhood(const std::vector<ContactManifold>& manifolds, const HeavyNeighbours& settings,
+                                      SweepState& state);
 
 // settings.sweeps relax sweeps over heavy_neighbourhood's manifolds.
 void converge_heavy(std::vector<ContactManifold>& manifolds, const SweepSettings& relax,

@@ -3,14 +3,10 @@
 namespace ddafit {
 namespace {
 
-// The group a block belongs to (union-find with path halving over `root`; a block is its own
-// root while root[b] is -1 or b).
+// The group a taken block belongs to (union-find with path halving over `root`; a root is its
+// own parent).
 int find_root(std::vector<int>& root, int b) {
-  while (root[b] >= 0 && root[b] != b) {
-    const int up = root[b];
-    if (root[up] >= 0 && root[up] != up) root[b] = root[up];
-    b = root[b];
-  }
+  while (root[b] != b) b = root[b] = root[root[b]];
   return b;
 }
 
@@ -21,6 +17,7 @@ void group_by_blocks(const std::vector<int>& list, const std::vector<std::array<
   out.ids.clear();
   out.first.assign(1, 0);
   if (list.empty()) return;
+  root.resize(masses.size(), -1);
   std::vector<int> touched;
   const auto take = [&](int b) {
     if (root[b] < 0) root[b] = b, touched.push_back(b);
@@ -37,6 +34,7 @@ void group_by_blocks(const std::vector<int>& list, const std::vector<std::array<
       if (ra != rb) root[std::max(ra, rb)] = std::min(ra, rb);
     }
     block_of[i] = a_moves ? a : b;
+    take(block_of[i]);  // a manifold with no moving block (none is listed) is a group of its own
   }
   // The groups, numbered by their first manifold in the list. Each manifold's root first; then
   // root[] is cleared and reused, a root's slot holding its group's number.

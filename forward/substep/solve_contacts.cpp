@@ -301,7 +301,6 @@ void converge_deep(std::vector<ContactManifold>& manifolds, const SweepSettings&
   if (list.empty()) return;
   const double inv_h = 1.0 / relax.h;
   ListGroups groups;
-  st.group_root.resize(st.masses.size(), -1);
   const auto sweeps = [&] {
     group_by_blocks(list, pair_blocks(manifolds, st), st.masses, st.group_root, groups);
     sweep_groups(groups, iterations,

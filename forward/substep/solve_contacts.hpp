@@ -59,10 +59,9 @@ struct SweepState {
   // Built when first needed in a step and kept for its substeps and its position correction
   // (the manifolds do not change within a step); reset with `deep` at the step's start.
   std::optional<BlockManifolds> of_block;
-  // The manifolds of blocks beside a much heavier one (converge_heavy.hpp), built when first
-  // needed in a step; reset with of_block.
-  std::optional<std::vector<int>> heavy;
-  std::optional<ListGroups> heavy_groups;  // heavy, split by list_groups.hpp; reset with it
+  // The manifolds of blocks beside a much heavier one (converge_heavy.hpp), in groups that share
+  // no moving block (list_groups.hpp), built when first needed in a step; reset with of_block.
+  std::optional<ListGroups> heavy;
   std::vector<int> group_root;  // per block, all -1: group_by_blocks' scratch
   // Per block: substeps left in which its manifolds are held to a share of the impact margins
   // after a group solved for an impact took it in, or a weight-bearing joint of it was struck
