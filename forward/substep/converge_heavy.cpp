@@ -22,7 +22,7 @@ const ListGroups& heavy_neighbourhood(const std::vector<ContactManifold>& manifo
     if (much_lighter(ma, mb, settings.mass_ratio)) light[a] = 1, any = true;
     if (much_lighter(mb, ma, settings.mass_ratio)) light[b] = 1, any = true;
   }
-  if (any) group_by_blocks(manifolds_of_blocks(pairs, light, st.masses), pairs, st.masses, st.group_root, groups);
+  if (any) group_by_blocks(manifolds_of_blocks(pairs, light, st.masses), pairs, st.masses, groups);
   return groups;
 }
 

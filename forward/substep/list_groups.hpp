@@ -29,9 +29,8 @@ struct ListGroups {
 };
 
 // Splits `list` (manifold ids into `pairs`, their two blocks) into groups joined by a shared
-// moving block. `root` is scratch per block: sized to the blocks and all -1 on entry, and left so
-// (an empty one is sized here).
+// moving block (block_groups.hpp).
 void group_by_blocks(const std::vector<int>& list, const std::vector<std::array<int, 2>>& pairs,
-                     const std::vector<BlockMass>& masses, std::vector<int>& root, ListGroups& out);
+                     const std::vector<BlockMass>& masses, ListGroups& out);
 
 }  // namespace ddafit

@@ -302,7 +302,7 @@ void converge_deep(std::vector<ContactManifold>& manifolds, const SweepSettings&
   const double inv_h = 1.0 / relax.h;
   ListGroups groups;
   const auto sweeps = [&] {
-    group_by_blocks(list, pair_blocks(manifolds, st), st.masses, st.group_root, groups);
+    group_by_blocks(list, pair_blocks(manifolds, st), st.masses, groups);
     sweep_groups(groups, iterations,
                  [&](int k, char& ignored) { solve_manifold(manifolds[k], ignored, relax, inv_h, st); });
   };

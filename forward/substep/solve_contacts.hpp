@@ -62,7 +62,6 @@ struct SweepState {
   // The manifolds of blocks beside a much heavier one (converge_heavy.hpp), in groups that share
   // no moving block (list_groups.hpp), built when first needed in a step; reset with of_block.
   std::optional<ListGroups> heavy;
-  std::vector<int> group_root;  // per block, all -1: group_by_blocks' scratch
   // Per block: substeps left in which its manifolds are held to a share of the impact margins
   // after a group solved for an impact took it in, or a weight-bearing joint of it was struck
   // (converge_impacts.cpp: kSettleShare, mark_struck). Kept
