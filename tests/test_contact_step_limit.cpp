@@ -1,0 +1,90 @@
+// control.contact_step_limit off (options.hpp): the blocks in contact no longer shorten the
+// substep solver's step; one that travels further than the move limit in a step widens its
+// contacts' margin instead (speculative contact). The class it must still get right is the
+// commonest event of a jointed slide at landslide speed: a slider across flush joints at 10 and
+// 30 m/s, at steps of 10 and 20 ms where it travels 2-12 move limits a step. Slopes that speed
+// it up (28/18, 20/12, 35/33 deg) and one that slows it (10 deg at 20 deg friction), sliders of
+// 0.5-3 m over joints every 0.3 and 2.5 m, each descending to the right and to the left
+// (forward/mirror.hpp): 192 runs, each within test_joint_crossing.cpp's tolerance, 1 % of seed
+// Eq. 4 wherever the slider has moved 1 cm, and under the energy audit and 1 % overlap of
+// contact_scene_audit.hpp.
+#include <iostream>
+#include <string>
+
+#include "tests/contact_scene_audit.hpp"
+#include "tests/slope_scene.hpp"
+
+namespace ddafit {
+namespace {
+
+struct LimitRun {
+  SimulationResult result;
+  std::string label;
+};
+
+LimitRun run_crossing(const Crossing& c, double step, bool mirrored, bool contact_step_limit) {
+  Scene scene = crossing_scene(c, Integrator::Substep);
+  scene.max_step = step;
+  scene.output_interval = step;
+  scene.options.contact_step_limit = contact_step_limit;
+  if (mirrored) scene = mirrored_scene(scene);
+  RunAudit audit;
+  LimitRun run{simulate(scene, audit_hooks(audit, scene.gravity)),
+               describe(c, Integrator::Substep) + ", step " + std::to_string(step) + " s" +
+                   (mirrored ? ", descending to the left" : "") +
+                   (contact_step_limit ? "" : ", contact_step_limit off")};
+  if (mirrored) unmirror_history(run.result.history);
+  expect_contact_physics(run.result, audit, Integrator::Substep, run.label);
+  return run;
+}
+
+// The steps a run of `duration` takes at the scene's `step` (outputs fall on steps: run_crossing).
+double steps_of_the_scene(double duration, double step) { return std::ceil(duration / step - 1e-9); }
+
+TEST(ContactStepLimit, FastSlidersFollowSeedEq4WithoutIt) {
+  double worst = 0.0;
+  std::string worst_label;
+  int runs = 0;
+  for (const bool mirrored : {false, true})
+    for (const double step : {0.01, 0.02})
+      for (const double speed : {10.0, 30.0})
+        for (const auto& [slope, friction] : {std::pair{28.0, 18.0}, {20.0, 12.0}, {10.0, 20.0}, {35.0, 33.0}})
+          for (const auto& [length, height] : {std::pair{0.5, 0.5}, std::pair{1.2, 0.6}, std::pair{3.0, 0.8}})
+            for (const double spacing : {0.3, 2.5}) {
+              Crossing c;
+              c.slope = slope, c.friction = friction, c.length = length, c.height = height;
+              c.spacing = spacing, c.speed = speed, c.front_gap = 0.03;
+              const LimitRun run = run_crossing(c, step, mirrored, false);
+              ++runs;
+              const SimulationResult& r = run.result;
+              ASSERT_EQ(r.summary.status, RunStatus::Completed) << run.label << ": " << r.summary.message;
+              // The contract: the slider's speed no longer shortens the step (the last step may
+              // land on the run's end).
+              EXPECT_LE(r.summary.run.steps, steps_of_the_scene(kDuration, step)) << run.label;
+              double when = 0.0;
+              const double error = displacement_error(r, c, &when);
+              EXPECT_LT(error, kDisplacementTolerance) << run.label << ": worst at t = " << when << " s";
+              if (error > worst) worst = error, worst_label = run.label;
+            }
+  EXPECT_EQ(runs, 192);
+  std::cout << "[measured] " << runs << " sliders at 10 and 30 m/s, 10 and 20 ms, contact_step_limit off: worst "
+            << "displacement error " << worst << " (" << worst_label << ")\n";
+}
+
+// With the rule (the default) the same fast slider does shorten the step: the option is what
+// lets it through, not a scene whose move limit was loose anyway. A 0.5 m slider's move limit
+// is half its width, 0.25 m (block_system.hpp), and at 30 m/s a 20 ms step carries it 0.6 m.
+TEST(ContactStepLimit, TheRuleShortensTheStepOfAFastSlider) {
+  Crossing c;
+  c.slope = 28.0, c.friction = 18.0, c.length = 0.5, c.height = 0.5, c.spacing = 0.3, c.speed = 30.0;
+  const LimitRun with = run_crossing(c, 0.02, false, true);
+  const LimitRun without = run_crossing(c, 0.02, false, false);
+  ASSERT_EQ(with.result.summary.status, RunStatus::Completed) << with.result.summary.message;
+  ASSERT_EQ(without.result.summary.status, RunStatus::Completed) << without.result.summary.message;
+  EXPECT_LT(with.result.summary.run.smallest_step, 0.5 * 0.02) << with.label;
+  EXPECT_GT(with.result.summary.run.steps, 2.0 * steps_of_the_scene(kDuration, 0.02)) << with.label;
+  EXPECT_NEAR(without.result.summary.run.smallest_step, 0.02, 1e-12) << without.label;
+}
+
+}  // namespace
+}  // namespace ddafit
