@@ -133,7 +133,7 @@ std::vector<std::string> unused_setting_warnings(const SimulationOptions& o, con
     if (o.sleep_time != d.sleep_time) unused.push_back("control.sleep_time");
     if (o.sleep_speed != d.sleep_speed) unused.push_back("control.sleep_speed");
     if (o.split_impulses != d.split_impulses) unused.push_back("control.split_impulses");
-    if (o.contact_step_limit != d.contact_step_limit) unused.push_back("control.contact_step_limit");
+    if (o.step_by_turn != d.step_by_turn) unused.push_back("control.step_by_turn");
   }
   if (unused.empty()) return {};
   std::string list;

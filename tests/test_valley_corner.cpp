@@ -174,21 +174,22 @@ TEST(ValleyCorner, ABlockSlidingIntoABankStaysOutOfItAndClimbsWhatItCan) {
         }
 }
 
-// The same event with control.contact_step_limit off (options.hpp): the toe block no longer
-// shortens the step as it slides, so at 20 ms and 30 m/s it travels 0.6 m a step, beyond its
-// move limit (at most half its 1 m height, block_system.hpp), and meets the bank only through
-// the margin its travel widens. It must still stay out of the bank, within the 1 % overlap
-// and within its energy, on every bank angle, at 10-30 m/s and at 10 and 20 ms.
-TEST(ValleyCorner, WithoutTheContactStepLimitABlockStillStaysOutOfTheBank) {
+// The same event with control.step_by_turn (options.hpp): the toe block's sliding no longer
+// shortens the step, so at 20 ms and 30 m/s it travels 0.6 m a step, beyond its move limit (at
+// most half its 1 m height, block_system.hpp), and meets the bank only through the margin its
+// travel widens; only its turning, once it strikes the bank, does. It must still stay out of the
+// bank, within the 1 % overlap and within its energy, on every bank angle, at 10-30 m/s and at
+// 10 and 20 ms.
+TEST(ValleyCorner, SteppedByTurnABlockStillStaysOutOfTheBank) {
   const double g = 9.81;
   for (const double alpha : {30.0, 45.0, 60.0, 90.0})
     for (const double v0 : {10.0, 20.0, 30.0})
       for (const double step : {0.01, 0.02}) {
         Scene scene = valley_scene(alpha, v0, step, Integrator::Substep);
-        scene.options.contact_step_limit = false;
+        scene.options.step_by_turn = true;
         scene.output_interval = step;
         const std::string label = "bank " + std::to_string(alpha) + " deg, " + std::to_string(v0) + " m/s, step " +
-                                  std::to_string(step) + " s, contact_step_limit off";
+                                  std::to_string(step) + " s, step by turn";
         const SimulationResult r = simulate(scene);
         ASSERT_EQ(r.summary.status, RunStatus::Completed) << label << ": " << r.summary.message;
         EXPECT_LE(r.summary.solver.worst_penetration_ratio, 0.01) << label;

@@ -96,7 +96,7 @@ inline constexpr ControlKey kControlKeys[] = {
     {"contact_hertz", &SimulationOptions::contact_hertz},
     {"contact_damping_ratio", &SimulationOptions::contact_damping_ratio},
     {"split_impulses", &SimulationOptions::split_impulses},
-    {"contact_step_limit", &SimulationOptions::contact_step_limit},
+    {"step_by_turn", &SimulationOptions::step_by_turn},
     {"rigid_blocks", &SimulationOptions::rigid_blocks},
     {"contact_passes", &SimulationOptions::contact_passes},
     {"deep_overlap_ratio", &SimulationOptions::deep_overlap_ratio},

@@ -25,17 +25,20 @@ double block_reach(const BlockSystem& s, int b) {
 // block in flight does not shorten the step: its flight is exact (trapezoidal update), and
 // speculative_reach() widens its contact margin by its travel instead. One small block
 // thrown clear of section VII's toe at 50 m/s had cut every step of the slide to 3 ms. With
-// control.contact_step_limit off, the blocks in contact are treated so too (options.hpp).
+// control.step_by_turn, a block in contact limits the step only by the travel its turning gives
+// its vertices; its sliding travel beyond the limit widens its margin as a flight's does.
 double choose_step(SubstepContext& w, double previous) {
   const BlockSystem& s = w.system;
   const Scene& scene = w.scene;
   const double max_move = w.max_move;
   double fastest = 0.0;
-  const bool limit_contacts = scene.options.contact_step_limit;  // Shi's rule (options.hpp)
+  const bool by_turn = scene.options.step_by_turn;  // the vertices' turning only (options.hpp)
   for (size_t b = 0; b < s.blocks.size(); ++b) {
     if (s.blocks[b].fixed) continue;
     w.reach[b] = block_reach(s, static_cast<int>(b));
-    if (w.near[b] && limit_contacts) fastest = std::max(fastest, vertex_speed_bound(s.blocks[b], w.reach[b]));
+    if (!w.near[b]) continue;
+    const double speed = by_turn ? turn_speed_bound(s.blocks[b], w.reach[b]) : vertex_speed_bound(s.blocks[b], w.reach[b]);
+    fastest = std::max(fastest, speed);
   }
   const double g = scene.gravity.norm() + w.ground.peak_acceleration();
   // (fastest + g dt) dt <= max_move
@@ -47,7 +50,7 @@ double choose_step(SubstepContext& w, double previous) {
 
 // Per block, how much further than max_move its vertices can travel in a step of dt: the
 // speculative margin its contacts get on top of the scene's (zero for blocks in contact,
-// whose speed chose the step, unless control.contact_step_limit is off). Gravity's share
+// whose speed chose the step, unless control.step_by_turn). Gravity's share
 // counted as in choose_step.
 void speculative_reach(SubstepContext& w, double dt) {
   const BlockSystem& s = w.system;

@@ -13,7 +13,7 @@ void mark_near(SubstepContext& w);
 // The next step: the scene's, grown back by the growth factor after a shorter one, and
 // short enough that no vertex of a block in contact moves further than allowed, counting
 // the speed gravity adds within the step (the contact margin covers that distance); with
-// control.contact_step_limit off, gravity's share alone. Also sets each block's reach (w.reach).
+// control.step_by_turn, the travel that turning gives them. Also sets each block's reach (w.reach).
 double choose_step(SubstepContext& w, double previous);
 
 // Per block, how much further than max_move its vertices can travel in a step of dt: the

@@ -24,12 +24,18 @@ struct BlockMass {
   bool moves = false;
 };
 
-// The fastest a vertex of block b moves: centroid speed plus the rotation and strain rates
-// times the block's reach (its largest vertex distance from the centroid). The step control
-// and sleeping read it.
+// The fastest a vertex of block b moves relative to its centroid: the rotation and strain rates
+// times the block's reach (its largest vertex distance from the centroid).
+inline double turn_speed_bound(const Block& b, double reach) {
+  const Vec6& v = b.velocity;
+  return reach * (std::abs(v[2]) + std::abs(v[3]) + std::abs(v[4]) + std::abs(v[5]));
+}
+
+// The fastest a vertex of block b moves: centroid speed plus turn_speed_bound. The step
+// control and sleeping read it.
 inline double vertex_speed_bound(const Block& b, double reach) {
   const Vec6& v = b.velocity;
-  return std::hypot(v[0], v[1]) + reach * (std::abs(v[2]) + std::abs(v[3]) + std::abs(v[4]) + std::abs(v[5]));
+  return std::hypot(v[0], v[1]) + turn_speed_bound(b, reach);
 }
 
 }  // namespace ddafit
