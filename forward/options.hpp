@@ -165,7 +165,7 @@ struct SimulationOptions {
   // split impulses both rest (tests/test_resting_column.cpp).
   bool split_impulses = true;
 
-  // control.step_by_turn, substep solver. false (the default, and every published number): Shi's
+  // control.step_by_turn, substep solver. false (the default; the Vajont scene sets true): Shi's
   // rule for the blocks in contact, the step short enough that none of their vertices moves further
   // than the move limit (step_move_limit, block_system.hpp). true: the rule counts only the travel
   // a block's turning (and straining) gives its vertices; a block that slides further than the
