@@ -37,7 +37,8 @@ double choose_step(SubstepContext& w, double previous) {
     if (s.blocks[b].fixed) continue;
     w.reach[b] = block_reach(s, static_cast<int>(b));
     if (!w.near[b]) continue;
-    const double speed = by_turn ? turn_speed_bound(s.blocks[b], w.reach[b]) : vertex_speed_bound(s.blocks[b], w.reach[b]);
+    const Block& block = s.blocks[b];
+    const double speed = by_turn ? turn_speed_bound(block, w.reach[b]) : vertex_speed_bound(block, w.reach[b]);
     fastest = std::max(fastest, speed);
   }
   const double g = scene.gravity.norm() + w.ground.peak_acceleration();
