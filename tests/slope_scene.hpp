@@ -4,6 +4,7 @@
 #pragma once
 
 #include <functional>
+#include <initializer_list>
 #include <sstream>
 
 #include "tests/contact_scene_audit.hpp"
@@ -210,6 +211,28 @@ constexpr double kDisplacementTolerance = 0.01;
   });
   *worst_time = e.when;
   return e.worst;
+}
+
+// The fast sliders of a landslide (test_joint_crossing_coarse.cpp, test_step_by_turn.cpp): 10 and
+// 30 m/s, on slopes that speed them up (28/18, 20/12, 35/33 deg) and one that slows them (10 deg at
+// 20 deg friction), sliders of 0.5-3 m over joints every 0.3 and 2.5 m, each way down, at each of
+// `steps`: run(c, step, mirrored) for each of them, 96 a step. Returns how many ran.
+template <class Run>
+int for_each_fast_slider(std::initializer_list<double> steps, Run&& run) {
+  int runs = 0;
+  for (const bool mirrored : {false, true})
+    for (const double step : steps)
+      for (const double speed : {10.0, 30.0})
+        for (const auto& [slope, friction] : {std::pair{28.0, 18.0}, {20.0, 12.0}, {10.0, 20.0}, {35.0, 33.0}})
+          for (const auto& [length, height] : {std::pair{0.5, 0.5}, std::pair{1.2, 0.6}, std::pair{3.0, 0.8}})
+            for (const double spacing : {0.3, 2.5}) {
+              Crossing c;
+              c.slope = slope, c.friction = friction, c.length = length, c.height = height;
+              c.spacing = spacing, c.speed = speed, c.front_gap = 0.03;
+              run(c, step, mirrored);
+              ++runs;
+            }
+  return runs;
 }
 
 // One crossing at `step` (time.step), on the slope as built or on its mirror image descending

@@ -44,28 +44,18 @@ double steps_of_the_scene(double duration, double step) { return std::ceil(durat
 TEST(StepByTurn, FastSlidersFollowSeedEq4) {
   double worst = 0.0;
   std::string worst_label;
-  int runs = 0;
-  for (const bool mirrored : {false, true})
-    for (const double step : {0.01, 0.02})
-      for (const double speed : {10.0, 30.0})
-        for (const auto& [slope, friction] : {std::pair{28.0, 18.0}, {20.0, 12.0}, {10.0, 20.0}, {35.0, 33.0}})
-          for (const auto& [length, height] : {std::pair{0.5, 0.5}, std::pair{1.2, 0.6}, std::pair{3.0, 0.8}})
-            for (const double spacing : {0.3, 2.5}) {
-              Crossing c;
-              c.slope = slope, c.friction = friction, c.length = length, c.height = height;
-              c.spacing = spacing, c.speed = speed, c.front_gap = 0.03;
-              const LimitRun run = run_crossing(c, step, mirrored, true);
-              ++runs;
-              const SimulationResult& r = run.result;
-              ASSERT_EQ(r.summary.status, RunStatus::Completed) << run.label << ": " << r.summary.message;
-              // The contract: the slider's speed along the slope no longer shortens the step (the
-              // last step may land on the run's end).
-              EXPECT_LE(r.summary.run.steps, steps_of_the_scene(kDuration, step)) << run.label;
-              double when = 0.0;
-              const double error = displacement_error(r, c, &when);
-              EXPECT_LT(error, kDisplacementTolerance) << run.label << ": worst at t = " << when << " s";
-              if (error > worst) worst = error, worst_label = run.label;
-            }
+  const int runs = for_each_fast_slider({0.01, 0.02}, [&](const Crossing& c, double step, bool mirrored) {
+    const LimitRun run = run_crossing(c, step, mirrored, true);
+    const SimulationResult& r = run.result;
+    ASSERT_EQ(r.summary.status, RunStatus::Completed) << run.label << ": " << r.summary.message;
+    // The contract: the slider's speed along the slope no longer shortens the step (the last
+    // step may land on the run's end).
+    EXPECT_LE(r.summary.run.steps, steps_of_the_scene(kDuration, step)) << run.label;
+    double when = 0.0;
+    const double error = displacement_error(r, c, &when);
+    EXPECT_LT(error, kDisplacementTolerance) << run.label << ": worst at t = " << when << " s";
+    if (error > worst) worst = error, worst_label = run.label;
+  });
   EXPECT_EQ(runs, 192);
   std::cout << "[measured] " << runs << " sliders at 10 and 30 m/s, 10 and 20 ms, step by turn: worst "
             << "displacement error " << worst << " (" << worst_label << ")\n";
