@@ -17,19 +17,19 @@
 namespace ddafit {
 namespace {
 
-struct LimitRun {
+struct CrossingRun {
   SimulationResult result;
   std::string label;
 };
 
-LimitRun run_crossing(const Crossing& c, double step, bool mirrored, bool by_turn) {
+CrossingRun run_crossing(const Crossing& c, double step, bool mirrored, bool by_turn) {
   Scene scene = crossing_scene(c, Integrator::Substep);
   scene.max_step = step;
   scene.output_interval = step;
   scene.options.step_by_turn = by_turn;
   if (mirrored) scene = mirrored_scene(scene);
   RunAudit audit;
-  LimitRun run{simulate(scene, audit_hooks(audit, scene.gravity)),
+  CrossingRun run{simulate(scene, audit_hooks(audit, scene.gravity)),
                describe(c, Integrator::Substep) + ", step " + std::to_string(step) + " s" +
                    (mirrored ? ", descending to the left" : "") +
                    (by_turn ? ", step by turn" : "")};
@@ -45,7 +45,7 @@ TEST(StepByTurn, FastSlidersFollowSeedEq4) {
   double worst = 0.0;
   std::string worst_label;
   const int runs = for_each_fast_slider({0.01, 0.02}, [&](const Crossing& c, double step, bool mirrored) {
-    const LimitRun run = run_crossing(c, step, mirrored, true);
+    const CrossingRun run = run_crossing(c, step, mirrored, true);
     const SimulationResult& r = run.result;
     ASSERT_EQ(r.summary.status, RunStatus::Completed) << run.label << ": " << r.summary.message;
     // The contract: the slider's speed along the slope no longer shortens the step (the last
@@ -67,13 +67,13 @@ TEST(StepByTurn, FastSlidersFollowSeedEq4) {
 TEST(StepByTurn, TheWholeTravelShortensTheStepOfAFastSlider) {
   Crossing c;
   c.slope = 28.0, c.friction = 18.0, c.length = 0.5, c.height = 0.5, c.spacing = 0.3, c.speed = 30.0;
-  const LimitRun with = run_crossing(c, 0.02, false, false);
-  const LimitRun without = run_crossing(c, 0.02, false, true);
-  ASSERT_EQ(with.result.summary.status, RunStatus::Completed) << with.result.summary.message;
-  ASSERT_EQ(without.result.summary.status, RunStatus::Completed) << without.result.summary.message;
-  EXPECT_LT(with.result.summary.run.smallest_step, 0.5 * 0.02) << with.label;
-  EXPECT_GT(with.result.summary.run.steps, 2.0 * steps_of_the_scene(kDuration, 0.02)) << with.label;
-  EXPECT_NEAR(without.result.summary.run.smallest_step, 0.02, 1e-12) << without.label;
+  const CrossingRun whole = run_crossing(c, 0.02, false, false);
+  const CrossingRun by_turn = run_crossing(c, 0.02, false, true);
+  ASSERT_EQ(whole.result.summary.status, RunStatus::Completed) << whole.result.summary.message;
+  ASSERT_EQ(by_turn.result.summary.status, RunStatus::Completed) << by_turn.result.summary.message;
+  EXPECT_LT(whole.result.summary.run.smallest_step, 0.5 * 0.02) << whole.label;
+  EXPECT_GT(whole.result.summary.run.steps, 2.0 * steps_of_the_scene(kDuration, 0.02)) << whole.label;
+  EXPECT_NEAR(by_turn.result.summary.run.smallest_step, 0.02, 1e-12) << by_turn.label;
 }
 
 }  // namespace
