@@ -63,6 +63,8 @@ std::string validate_options(const SimulationOptions& o) {
        "must be in [0, 1000] m/s (0 = 1 % of rest_speed)"},
       {"contact_passes", static_cast<double>(o.contact_passes), o.contact_passes >= 1 && o.contact_passes <= 64,
        "must be a whole number in [1, 64]"},
+      {"quiet_start_steps", static_cast<double>(o.quiet_start_steps),
+       o.quiet_start_steps >= 0 && o.quiet_start_steps <= 10000, "must be a whole number in [0, 10000]"},
       {"deep_overlap_ratio", o.deep_overlap_ratio, o.deep_overlap_ratio >= 0.0 && o.deep_overlap_ratio <= 0.1,
        "must be in [0, 0.1] (0 = automatic)"},
       {"substeps", static_cast<double>(o.substeps), o.substeps >= 1 && o.substeps <= 1000,

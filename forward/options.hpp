@@ -124,6 +124,17 @@ struct SimulationOptions {
   // section VII; 2-8 passes cost as much and land fewer blocks right (docs/performance.md).
   int contact_passes = 16;
 
+  // control.quiet_start_steps: most steps of the quiet start, in which the contacts touching at
+  // t = 0 take up the weight from rest before the clock runs (forward/substep/quiet_start.cpp;
+  // it stops sooner once no normal impulse changes by more than 1e-4 of the largest over a
+  // step). A slope not in equilibrium never gets there, so a landslide runs them all: on Vajont
+  // section I the change fell to 0.4 % within 100 steps, on section VII to about 10 % within
+  // 50, and neither improved later. Section IV released after 100 bounced (model revision
+  // 2026-11-27), after 300 it ran; 0 starts the dynamics with unloaded contacts. The Vajont
+  // scene sets 250: its sections I-VII ran within 0.40-0.93 % overlap and section VII's quiet
+  // start took half its 14 s (docs/performance.md, "The quiet start's length").
+  int quiet_start_steps = 500;
+
   // control.deep_overlap_ratio: the overlap, as a share of the smaller block of a pair, from
   // which the substep solver corrects a point in position and gives its blocks extra sweeps
   // (solve_contacts.hpp: converge_deep, correct_positions). Below it an overlap is left to the

@@ -85,6 +85,11 @@ struct SolverReport {
   // J/m: what the quiet start's overlaps can give back by lifting blocks, sum F delta at t = 0; the
   // energy audit credits it against the blocks that rise (EnergyAudit::stored_contact; substep solver)
   double stored_contact_energy = 0.0;
+  // The quiet start (substep solver, control.quiet_start_steps): the steps it ran, and the
+  // largest change of a normal impulse over its last step, as a share of the largest impulse
+  // (it stops once that is under 1e-4; a slope that is not in equilibrium runs every step).
+  int quiet_start_steps = 0;
+  double quiet_start_change = 0.0;
   long contact_points = 0;                       // summed over steps (mean = / steps)
   double worst_penetration = 0.0;                // m, deepest overlap at the end of a step
   double worst_penetration_ratio = 0.0;          // that depth / the smaller block's size

@@ -134,6 +134,7 @@ std::vector<std::string> unused_setting_warnings(const SimulationOptions& o, con
     if (o.sleep_speed != d.sleep_speed) unused.push_back("control.sleep_speed");
     if (o.split_impulses != d.split_impulses) unused.push_back("control.split_impulses");
     if (o.step_by_turn != d.step_by_turn) unused.push_back("control.step_by_turn");
+    if (o.quiet_start_steps != d.quiet_start_steps) unused.push_back("control.quiet_start_steps");
   }
   if (unused.empty()) return {};
   std::string list;

@@ -227,6 +227,11 @@ TEST(SceneReader, BadControlValue) {
   // A deep overlap of a fifth of a block would leave blocks pressed through each other uncorrected.
   EXPECT_TRUE(FailsWith(kExample + "control: {deep_overlap_ratio: 0.2}\n", "control.deep_overlap_ratio", "[0, 0.1]"));
   EXPECT_TRUE(FailsWith(kExample + "control: {deep_overlap_ratio: -1e-3}\n", "control.deep_overlap_ratio", "[0, 0.1]"));
+  // A quiet start of negative or fractional length has no meaning; one of a million steps would
+  // run for hours before t = 0.
+  EXPECT_TRUE(FailsWith(kExample + "control: {quiet_start_steps: -1}\n", "control.quiet_start_steps", "[0, 10000]"));
+  EXPECT_TRUE(FailsWith(kExample + "control: {quiet_start_steps: 2.5}\n", "control.quiet_start_steps", "whole number"));
+  EXPECT_TRUE(FailsWith(kExample + "control: {quiet_start_steps: 1000000}\n", "control.quiet_start_steps", "[0, 10000]"));
 }
 
 TEST(SceneReader, UnreadableFile) {

@@ -100,6 +100,8 @@ std::string summary_json_text(const std::string& scene_path, const SimulationRes
     j["solver"]["substeps"] = solver.substeps;
     j["solver"]["deep_overlap_ratio"] = solver.deep_overlap_ratio;
     j["solver"]["stored_contact_energy"] = solver.stored_contact_energy;
+    j["solver"]["quiet_start_steps"] = solver.quiet_start_steps;
+    j["solver"]["quiet_start_change"] = solver.quiet_start_change;
     j["solver"]["mean_contact_points"] = static_cast<double>(solver.contact_points) / steps;
     j["solver"]["unconverged_points"] = solver.unconverged_points;
     j["solver"]["fast_steps"] = solver.fast_steps;

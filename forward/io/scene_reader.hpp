@@ -99,6 +99,7 @@ inline constexpr ControlKey kControlKeys[] = {
     {"step_by_turn", &SimulationOptions::step_by_turn},
     {"rigid_blocks", &SimulationOptions::rigid_blocks},
     {"contact_passes", &SimulationOptions::contact_passes},
+    {"quiet_start_steps", &SimulationOptions::quiet_start_steps},
     {"deep_overlap_ratio", &SimulationOptions::deep_overlap_ratio},
     {"sleep_time", &SimulationOptions::sleep_time},
     {"sleep_speed", &SimulationOptions::sleep_speed},

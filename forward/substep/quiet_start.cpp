@@ -16,16 +16,10 @@ namespace ddafit {
 namespace {
 
 // The quiet start stops once no point's normal impulse changes over a step by more than
-// kQuietStartTolerance of the largest, or after kQuietStartSteps steps. A slope that is
-// not in equilibrium never gets there (its blocks slide a little between the restarts
-// from rest): on Vajont section I the change fell to 0.4 % within 100 steps and on section
-// VII to ~10 % within 50, and neither improved later. The full 500 steps are still needed:
-// section IV released after 100 bounced, its kinetic energy reaching 4e7 J/m
-// within 3 steps while its centroids rose (the audit stops that); after 300 it ran.
-// A heavy block on a light one (mass ratio 100) needs the 1e-4: stopped at 1e-3 it rocked
-// itself up within 0.06 s (test_substep_scenes.cpp); at 1e-4 it settles within 100
-// steps and moves 2 um.
-constexpr int kQuietStartSteps = 500;
+// kQuietStartTolerance of the largest, or after control.quiet_start_steps steps (options.hpp
+// says why a landslide runs them all). A heavy block on a light one (mass ratio 100) needs
+// the 1e-4: stopped at 1e-3 it rocked itself up within 0.06 s (test_substep_scenes.cpp); at
+// 1e-4 it settles within 100 steps and moves 2 um.
 constexpr double kQuietStartTolerance = 1e-4;
 
 // The normal impulses of the last substep, two slots per manifold (a manifold has at most two
@@ -88,7 +82,9 @@ std::string settle_from_rest(SubstepContext& w, double step) {
   }
   std::vector<double> before;
   w.settling = true;
-  for (int k = 0; k < kQuietStartSteps; ++k) {
+  w.report.quiet_start_steps = 0;
+  w.report.quiet_start_change = 0.0;
+  for (int k = 0; k < w.options.quiet_start_steps; ++k) {
     w.threads.begin_step();
     if (k > 0) find_step_contacts(w);
     last_normal_impulses(w.contacts.manifolds, before);
@@ -96,7 +92,9 @@ std::string settle_from_rest(SubstepContext& w, double step) {
       if (!was_fixed[b]) s.blocks[b].velocity.setZero();  // still drives its contacts
     advance_step(w, step, false);
     w.threads.end_step();
-    if (impulse_change(w.contacts.manifolds, before) <= kQuietStartTolerance) break;
+    w.report.quiet_start_steps = k + 1;
+    w.report.quiet_start_change = impulse_change(w.contacts.manifolds, before);
+    if (w.report.quiet_start_change <= kQuietStartTolerance) break;
   }
   w.settling = false;
   for (size_t b = 0; b < s.blocks.size(); ++b) {
