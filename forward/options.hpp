@@ -129,8 +129,8 @@ struct SimulationOptions {
   // it stops sooner once no normal impulse changes by more than 1e-4 of the largest over a
   // step). A slope not in equilibrium never gets there, so a landslide runs them all: on Vajont
   // section I the change fell to 0.4 % within 100 steps, on section VII to about 10 % within
-  // 50, and neither improved later. Section IV released after 100 bounced (model revision
-  // 2026-11-27), after 300 it ran; 0 starts the dynamics with unloaded contacts. The Vajont
+  // 50, and neither improved later. Section IV released after 100 bounced (at an earlier
+  // revision), after 300 it ran; 0 starts the dynamics with unloaded contacts. The Vajont
   // scene sets 250: its sections I-VII ran within 0.40-0.93 % overlap and section VII's quiet
   // start took half its 14 s (docs/performance.md, "The quiet start's length").
   int quiet_start_steps = 500;

@@ -123,6 +123,9 @@ std::vector<std::string> unused_setting_warnings(const SimulationOptions& o, con
     if (o.shear_penalty_ratio != d.shear_penalty_ratio) unused.push_back("control.shear_penalty_ratio");
     if (o.max_penetration_ratio != d.max_penetration_ratio) unused.push_back("control.max_penetration_ratio");
     if (o.contact_tolerance_ratio != d.contact_tolerance_ratio) unused.push_back("control.contact_tolerance_ratio");
+    if (o.step_cut_factor != d.step_cut_factor) unused.push_back("control.step_cut_factor");
+    if (o.penalty_raise_factor != d.penalty_raise_factor) unused.push_back("control.penalty_raise_factor");
+    if (o.max_penalty_raises != d.max_penalty_raises) unused.push_back("control.max_penalty_raises");
   } else {
     if (o.substeps != d.substeps) unused.push_back("time.substeps");
     if (o.contact_hertz != d.contact_hertz) unused.push_back("control.contact_hertz");
