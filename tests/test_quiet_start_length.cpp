@@ -10,7 +10,9 @@
 // Swept over slopes, friction on both sides of them, steps and substeps, and lengths of 0 to 250.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <iostream>
 #include <sstream>
 
 #include "forward/simulation.hpp"

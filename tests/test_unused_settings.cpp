@@ -60,12 +60,14 @@ TEST(UnusedSettings, TheImplicitSolverNamesEverySubstepSetting) {
 
 TEST(UnusedSettings, TheSubstepSolverNamesEveryImplicitSetting) {
   expect_each_named(Integrator::Substep,
-                    {{"control.max_open_close_iterations", [](SimulationOptions& o) { o.max_open_close_iterations = 12; }},
+                    {{"control.max_open_close_iterations",
+                      [](SimulationOptions& o) { o.max_open_close_iterations = 12; }},
                      {"control.reuse_factorization", [](SimulationOptions& o) { o.reuse_factorization = true; }},
                      {"control.update_factorization", [](SimulationOptions& o) { o.update_factorization = false; }},
                      {"control.settle_passes", [](SimulationOptions& o) { o.settle_passes = 10; }},
                      {"control.max_penetration_ratio", [](SimulationOptions& o) { o.max_penetration_ratio = 1e-4; }},
-                     {"control.contact_tolerance_ratio", [](SimulationOptions& o) { o.contact_tolerance_ratio = 1e-6; }},
+                     {"control.contact_tolerance_ratio",
+                      [](SimulationOptions& o) { o.contact_tolerance_ratio = 1e-6; }},
                      {"control.penalty", [](SimulationOptions& o) { o.penalty = 1e9; }},
                      {"control.penalty_factor", [](SimulationOptions& o) { o.penalty_factor = 20.0; }},
                      {"control.shear_penalty_ratio", [](SimulationOptions& o) { o.shear_penalty_ratio = 0.5; }},
