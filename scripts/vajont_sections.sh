@@ -8,7 +8,8 @@
 # same on any thread count, so one thread leaves a core free for other work); DDAFIT_BIN
 # names another ddafit binary (a copy keeps a long batch safe from rebuilds). A finished run (summary.json present) is not
 # redone. Writes OUT_DIR/sections.csv: one row per run with point 1's results, the wall
-# time, steps, contact points and worst overlap (about an hour of both cores for all 20).
+# time, steps, contact points and worst overlap (about 42 minutes of both cores for all 20 on a
+# slow machine, 2026-12-08).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 out=${1:-results/vajont-sections}
