@@ -34,14 +34,14 @@ size_of() {  # seed Table 2 mean block sizes, m (cases/vajont/vajont.yaml)
 # 1.06 %). docs/vajont.md, "Sections VIII-X at 10 ms x 4"; 5 ms x 4 and a 500-step quiet start
 # until 2026-12-08.
 step_of() {
-  local substeps=4
+  local substeps
   case $1 in
-    X) substeps=5 ;&
-    VIII|IX)
-      echo "--set time.step=0.01 --set time.substeps=$substeps --set control.max_displacement_ratio=0.0002" \
-        "--set control.step_by_turn=false" ;;
-    *) echo "" ;;
+    VIII|IX) substeps=4 ;;
+    X) substeps=5 ;;
+    *) return ;;
   esac
+  echo "--set time.step=0.01 --set time.substeps=$substeps --set control.max_displacement_ratio=0.0002" \
+    "--set control.step_by_turn=false"
 }
 
 sets=()
