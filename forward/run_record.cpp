@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <sstream>
 
 namespace ddafit {
 
@@ -14,6 +15,27 @@ void report_overlap(const BlockSystem& s, const WorstOverlap& worst, SolverRepor
   report.worst_penetration_time = worst.time;
   if (worst.block_a >= 0)
     report.worst_penetration_at = "blocks '" + s.block_names[worst.block_a] + "' and '" + s.block_names[worst.block_b] + "'";
+}
+
+std::string overlap_warning(const Scene& scene, const SolverReport& report) {
+  if (!(report.worst_penetration_ratio > kOverlapBoundRatio)) return {};
+  const SimulationOptions& o = scene.options;
+  std::ostringstream out;
+  out.precision(3);
+  out << "the worst overlap, " << report.worst_penetration << " m at t = " << report.worst_penetration_time
+      << " s between " << report.worst_penetration_at << ", is " << 100.0 * report.worst_penetration_ratio
+      << " % of the smaller block, over the " << 100.0 * kOverlapBoundRatio
+      << " % ddafit's runs are checked to (docs/theory.md, \"Failure diagnosis\"): the blocks sank into each other "
+         "there; ";
+  if (report.integrator == Integrator::Substep) {
+    out << "shorten time.step (now " << scene.max_step << " s) or raise time.substeps (now " << o.substeps << ")";
+    // A deep-overlap ratio the scene set (0 = automatic) is where the position correction starts.
+    if (o.deep_overlap_ratio > 0.0) out << ", or lower control.deep_overlap_ratio (now " << o.deep_overlap_ratio << ")";
+  } else {
+    out << "lower control.max_penetration_ratio (now " << o.max_penetration_ratio << ") or time.step (now "
+        << scene.max_step << " s)";
+  }
+  return out.str();
 }
 
 Vec2 point_velocity(const BlockSystem& s, const MaterialPoint& p) {

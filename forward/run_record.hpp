@@ -15,6 +15,16 @@ Vec2 point_velocity(const BlockSystem& system, const MaterialPoint& point);
 // The worst overlap of the run into the solver's report (summary.json).
 void report_overlap(const BlockSystem& system, const WorstOverlap& worst, SolverReport& report);
 
+// The deepest overlap, as a share of the smaller free block of its pair, that ddafit's runs are
+// checked to: the contact class tests (tests/contact_scene_audit.hpp), the substep scenes and the
+// Vajont sections I-X (docs/vajont.md) all hold it. Deeper, the blocks have sunk into each other
+// by more than the contact rules were verified at, and what a run reports near them is less sure.
+inline constexpr double kOverlapBoundRatio = 0.01;
+
+// The warning for a run that completed with its worst overlap over kOverlapBoundRatio (what to
+// change, by solver), or "" (overlap_warning in summary.json's warnings and on stderr).
+std::string overlap_warning(const Scene& scene, const SolverReport& report);
+
 class RunRecorder {
  public:
   RunRecorder(const Scene& scene, const SimulationHooks& hooks, SimulationResult& result);

@@ -189,6 +189,8 @@ SimulationResult simulate(const Scene& given, const SimulationHooks& hooks) {
     if (is_heavy_on_light(limits.heavy)) summary.warnings.push_back(heavy_on_light_warning(system, limits.heavy));
     run_implicit(scene, system, recorder, summary);
   }
+  if (summary.status == RunStatus::Completed)
+    if (std::string w = overlap_warning(scene, summary.solver); !w.empty()) summary.warnings.push_back(std::move(w));
   summary.profile.total = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
   return result;
 }
