@@ -21,8 +21,9 @@ void report_overlap(const BlockSystem& system, const WorstOverlap& worst, Solver
 // by more than the contact rules were verified at, and what a run reports near them is less sure.
 inline constexpr double kOverlapBoundRatio = 0.01;
 
-// The warning for a run that completed with its worst overlap over kOverlapBoundRatio (what to
-// change, by solver), or "" (overlap_warning in summary.json's warnings and on stderr).
+// The warning for a run that completed with its worst overlap over kOverlapBoundRatio, naming
+// the two blocks and what to change on the solver that ran, or "". simulate() adds it to the
+// summary's warnings (summary.json; stderr unless --quiet).
 std::string overlap_warning(const Scene& scene, const SolverReport& report);
 
 class RunRecorder {
