@@ -11,6 +11,7 @@ A scene or study that cannot be used raises ValueError with the one line the com
 prints. Ctrl-C stops a run and raises ddafit.Interrupted, whose .result keeps what it had.
 """
 import os as _os
+import warnings as _warnings
 
 # Threads that wait must not spin on a shared machine: the command line bounds libgomp's
 # spinning by re-executing itself with GOMP_SPINCOUNT set (batch/thread_budget.cpp); a
@@ -22,7 +23,7 @@ if "OMP_WAIT_POLICY" not in _os.environ and "GOMP_SPINCOUNT" not in _os.environ:
 from . import _core  # noqa: E402
 from ._core import Result, Scene, model_revision, version
 
-__all__ = ["Scene", "Result", "Interrupted", "load_scene", "mesh", "simulate", "stable", "invert",
+__all__ = ["Scene", "Result", "Interrupted", "RunWarning", "load_scene", "mesh", "simulate", "stable", "invert",
            "model_revision", "version"]
 
 
@@ -32,6 +33,12 @@ class Interrupted(KeyboardInterrupt):
     def __init__(self, result):
         super().__init__("the run was interrupted; what it simulated is in .result")
         self.result = result
+
+
+class RunWarning(UserWarning):
+    """A warning of a run, as the command line prints it and summary.json lists it under
+    "warnings": a setting known to degrade results, or an overlap over the 1 % of the smaller
+    block the runs are checked to. simulate() raises each as a Python warning too."""
 
 
 def _settings(set):
@@ -72,6 +79,8 @@ def simulate(scene, threads=0, set=None, mirror=False):
     result = _core.simulate(_scene_or_path(scene), int(threads), _settings(set), bool(mirror))
     if result.summary["status"] == "interrupted":
         raise Interrupted(result)
+    for warning in result.summary.get("warnings", []):
+        _warnings.warn(warning, RunWarning, stacklevel=2)
     return result
 
 

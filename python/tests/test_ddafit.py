@@ -7,6 +7,7 @@ import signal
 import subprocess
 import threading
 import time
+import warnings
 
 import numpy as np
 import pytest
@@ -35,6 +36,22 @@ def test_a_slider_follows_seed_eq_4_through_the_history_arrays():
     # 1e-4 m: the implicit solver's error on this scene is 5e-5 m (docs/verification.md).
     np.testing.assert_allclose(along, 0.5 * acc * h["time"] ** 2, atol=1e-4)
     assert run.summary["points"]["P1"]["max_total_displacement"] == pytest.approx(along.max(), abs=1e-9)
+
+
+def test_a_run_deeper_than_the_overlap_bound_warns_in_python_as_on_the_command_line():
+    # Vajont section I degraded with its position correction off, at 0.1 s x 2 for 10 s: it
+    # completes 5.8 % of a block deep (tests/test_vajont.cpp), and the summary's warning is
+    # raised as a ddafit.RunWarning as well. The incline above gives none.
+    scene = ddafit.load_scene(os.path.join(CASES, "vajont", "degraded.yaml"),
+                              set={"mesh.block_size": 34.3, "control.deep_overlap_ratio": 0.1, "time.step": 0.1,
+                                   "time.substeps": 2, "time.duration": 10})
+    with pytest.warns(ddafit.RunWarning, match="the worst overlap") as raised:
+        run = ddafit.simulate(scene, threads=1)
+    assert run.summary["status"] == "completed"
+    assert sorted(str(w.message) for w in raised if w.category is ddafit.RunWarning) == sorted(run.summary["warnings"])
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", ddafit.RunWarning)
+        assert ddafit.simulate(incline_no_degradation(), threads=1).summary["warnings"] == []
 
 
 def test_the_mirror_image_reads_back_as_the_scene():
