@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "forward/geometry.hpp"
+#include "forward/run_record.hpp"
 #include "forward/simulation.hpp"
 #include "forward/common/energy_check.hpp"
 #include "forward/water/hydrostatic.hpp"
@@ -56,8 +57,9 @@ constexpr double kEnergyFloorHeight = 1e-5;  // m
   return std::max(kEnergyFloorHeight, s.density[block.material] * gravity.norm() * height * height / (8.0 * stiffness));
 }
 
-// The penetration limit for the substep solver: 1 % of the smaller block's size.
-constexpr double kMaxPenetrationRatio = 0.01;
+// The penetration limit for the substep solver: 1 % of the smaller block's size, the
+// bound past which a completed run warns (run_record.hpp).
+constexpr double kMaxPenetrationRatio = kOverlapBoundRatio;
 
 // No pass-through: a free block's centroid must stay outside every other block by at
 // least this fraction of the block's inscribed radius (the distance from its centroid to

@@ -26,12 +26,13 @@
 #include <vector>
 
 #include "forward/io/scene_reader.hpp"
+#include "forward/run_record.hpp"
 #include "forward/simulation.hpp"
 
 namespace ddafit {
 namespace {
 
-constexpr double kMaxOverlapRatio = 0.01;
+constexpr double kMaxOverlapRatio = kOverlapBoundRatio;  // 1 % (run_record.hpp)
 constexpr double kRunoutAgreement = 0.10;
 const std::string kSlab = std::string(DDAFIT_CASES_DIR) + "/slab/slab.yaml";
 

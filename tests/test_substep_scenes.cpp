@@ -262,7 +262,7 @@ struct HeavyOnCubes {
   int over(double bound) const { return static_cast<int>(std::count_if(moves.begin(), moves.end(), [&](double x) { return x >= bound; })); }
 };
 HeavyOnCubes heavy_blocks_on_cubes(Integrator integrator, double drop, int cubes = 5) {
-  constexpr double kMaxOverlap = 1e-2;  // of the smaller block (this file's penetration limit)
+  constexpr double kMaxOverlap = kOverlapBoundRatio;  // 1 % of the smaller block (run_record.hpp)
   constexpr double kLength = 1.0, kHeight = 0.5;
   const double kCube = kLength / cubes;
   HeavyOnCubes result;
